@@ -1,0 +1,133 @@
+#include "apps/cli_args.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "io/input_error.h"
+
+namespace clothfit {
+
+CommandArgs::CommandArgs(std::string command, std::string usage,
+                         std::string summary)
+    : command_(std::move(command)),
+      usage_(std::move(usage)),
+      summary_(std::move(summary)) {}
+
+void CommandArgs::Option(const std::string& name, const std::string& value_name,
+                         const std::string& help, const std::string& fallback) {
+  order_.push_back(name);
+  specs_[name] = Spec{value_name, help, fallback};
+}
+
+void CommandArgs::Flag(const std::string& name, const std::string& help) {
+  order_.push_back(name);
+  specs_[name] = Spec{"", help, ""};
+}
+
+void CommandArgs::Fail(const std::string& message) const {
+  throw InputError("clothfit " + command_ + ": " + message +
+                   " (see 'clothfit " + command_ + " --help')");
+}
+
+bool CommandArgs::Parse(int argc, char** argv, int first) {
+  for (int i = first; i < argc; ++i) {
+    std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      std::cout << Help();
+      return false;
+    }
+    if (arg.rfind("--", 0) != 0 || arg == "--") {
+      positional_.push_back(arg);
+      continue;
+    }
+    std::string name = arg.substr(2);
+    std::string value;
+    bool has_inline = false;
+    const size_t eq = name.find('=');
+    if (eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_inline = true;
+    }
+    const auto it = specs_.find(name);
+    if (it == specs_.end()) Fail("unknown option '--" + name + "'");
+    if (values_.count(name)) Fail("option '--" + name + "' given twice");
+    if (it->second.value_name.empty()) {
+      if (has_inline) Fail("option '--" + name + "' takes no value");
+      values_[name] = "1";
+      continue;
+    }
+    if (!has_inline) {
+      if (i + 1 >= argc) {
+        Fail("option '--" + name + "' needs a value (" +
+             it->second.value_name + ")");
+      }
+      value = argv[++i];
+    }
+    values_[name] = value;
+  }
+  return true;
+}
+
+bool CommandArgs::Has(const std::string& name) const {
+  return values_.count(name) > 0;
+}
+
+std::string CommandArgs::Get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it != values_.end()) return it->second;
+  const auto spec = specs_.find(name);
+  if (spec != specs_.end() && !spec->second.fallback.empty()) {
+    return spec->second.fallback;
+  }
+  Fail("option '--" + name + "' is required");
+}
+
+std::string CommandArgs::Required(const std::string& name) const {
+  if (!Has(name)) Fail("option '--" + name + "' is required");
+  return Get(name);
+}
+
+double CommandArgs::GetDouble(const std::string& name) const {
+  const std::string text = Get(name);
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x)) {
+    Fail("option '--" + name + "': cannot parse '" + text +
+         "' as a finite number");
+  }
+  return x;
+}
+
+long CommandArgs::GetInt(const std::string& name) const {
+  const std::string text = Get(name);
+  char* end = nullptr;
+  errno = 0;
+  const long x = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno == ERANGE) {
+    Fail("option '--" + name + "': cannot parse '" + text + "' as an integer");
+  }
+  return x;
+}
+
+std::string CommandArgs::Help() const {
+  std::ostringstream out;
+  out << "usage: " << usage_ << "\n\n" << summary_ << "\n\noptions:\n";
+  for (const std::string& name : order_) {
+    const Spec& s = specs_.at(name);
+    std::string left = "  --" + name;
+    if (!s.value_name.empty()) left += " " + s.value_name;
+    out << left;
+    out << std::string(left.size() < 28 ? 28 - left.size() : 1, ' ') << s.help;
+    if (!s.fallback.empty()) out << " (default: " << s.fallback << ")";
+    out << "\n";
+  }
+  out << "  --help                    this text\n";
+  return out.str();
+}
+
+}  // namespace clothfit

@@ -1,0 +1,41 @@
+// clothfit preset NAME / clothfit presets (SPEC §5).
+#include <iostream>
+
+#include "apps/commands.h"
+#include "models/presets.h"
+
+namespace clothfit {
+
+int RunPreset(int argc, char** argv) {
+  CommandArgs args("preset", "clothfit preset NAME [--out P.json]",
+                   "Prints (or writes) the parameter file of a preset fabric "
+                   "of Sadeghi et al. 2013 (Tables 2 and 3).");
+  args.Option("out", "P.json", "write to this file instead of stdout");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  if (args.Positional().size() != 1) {
+    args.Fail("expected one preset name (see 'clothfit presets')");
+  }
+  ClothParams cloth;
+  if (!GetPreset(args.Positional()[0], &cloth)) {
+    args.Fail("unknown preset '" + args.Positional()[0] +
+              "'; 'clothfit presets' lists them");
+  }
+  const ParamFile file{cloth, ""};
+  if (args.Has("out")) {
+    WriteParamFile(file, args.Get("out"));
+  } else {
+    std::cout << FormatParamFile(file);
+  }
+  return 0;
+}
+
+int RunPresets(int argc, char** argv) {
+  CommandArgs args("presets", "clothfit presets",
+                   "Lists the preset fabrics, one name per line.");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  if (!args.Positional().empty()) args.Fail("takes no arguments");
+  for (const std::string& name : PresetNames()) std::cout << name << "\n";
+  return 0;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,26 @@
+// The clothfit subcommands. Each returns the process exit status: 0 success,
+// 1 a fit without a usable solution, 2 bad input or usage (they throw
+// InputError for that; main() prints it and returns 2).
+#pragma once
+
+#include <string>
+
+#include "apps/cli_args.h"
+#include "io/params_json.h"
+#include "io/table.h"
+
+namespace clothfit {
+
+int RunEval(int argc, char** argv);
+int RunPreset(int argc, char** argv);
+int RunPresets(int argc, char** argv);
+int RunSynth(int argc, char** argv);
+
+// --quantity value: "brdf" | "cosine_weighted" (models predict no
+// transmittance).
+Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
+
+// The parameters named by --params FILE or --preset NAME (exactly one).
+ParamFile LoadModelOption(const CommandArgs& args);
+
+}  // namespace clothfit

@@ -1,0 +1,66 @@
+// clothfit: fits cloth appearance models to measurement tables (SPEC §5).
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "apps/commands.h"
+#include "io/input_error.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  int (*run)(int, char**);
+  const char* summary;
+};
+
+const Command kCommands[] = {
+    {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
+    {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
+    {"presets", clothfit::RunPresets, "list the preset fabrics"},
+    {"synth", clothfit::RunSynth, "write a synthetic measurement table"},
+};
+
+void PrintUsage(std::ostream& out) {
+  out << "usage: clothfit <command> [options]   (clothfit <command> --help)\n"
+         "\ncommands:\n";
+  for (const Command& c : kCommands) {
+    out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ')
+        << c.summary << "\n";
+  }
+  out << "\nexit status: 0 success, 1 a fit without a usable solution, "
+         "2 bad input or usage\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    PrintUsage(std::cerr);
+    return 2;
+  }
+  const std::string name = argv[1];
+  if (name == "--help" || name == "-h" || name == "help") {
+    PrintUsage(std::cout);
+    return 0;
+  }
+  for (const Command& c : kCommands) {
+    if (name != c.name) continue;
+    try {
+      return c.run(argc, argv);
+    } catch (const clothfit::InputError& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      return 2;
+    } catch (const std::bad_alloc&) {
+      std::cerr << "error: out of memory\n";
+      return 2;
+    } catch (const std::exception& e) {
+      std::cerr << "internal error: " << e.what() << "\n";
+      return 3;
+    }
+  }
+  std::cerr << "error: unknown command '" << name << "'\n";
+  PrintUsage(std::cerr);
+  return 2;
+}

@@ -1,0 +1,57 @@
+// Synthetic measurement tables: direction sets over the hemisphere and
+// model values with deterministic multiplicative noise. Used by
+// `clothfit synth`, the tests and the benchmarks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/table.h"
+#include "models/evaluate.h"
+
+namespace clothfit {
+
+// Deterministic random numbers, identical on every platform (SplitMix64 for
+// the seed, xoshiro256** for the stream, Box-Muller for normals).
+class Random {
+ public:
+  explicit Random(uint64_t seed);
+  uint64_t NextU64();
+  double Uniform();  // [0, 1)
+  double Normal();   // mean 0, standard deviation 1
+
+ private:
+  uint64_t s_[4];
+  bool has_spare_ = false;
+  double spare_ = 0.0;
+};
+
+struct DirectionSampling {
+  int rows = 2000;
+  // Cosine of the largest polar angle sampled (0 reaches grazing; the
+  // sampler also places rows at theta = 89.9 deg when grazing is included).
+  double min_cos_theta = 0.0;
+  // wo over the whole sphere instead of the upper hemisphere (thread tables).
+  bool full_sphere_out = false;
+};
+
+// Rows uniform in solid angle over the hemisphere (wi, and wo unless
+// full_sphere_out), with 5 % of the rows at grazing (theta = 89.9 deg)
+// when min_cos_theta == 0. Values are zero; sigma and weight are 1.
+std::vector<TableRow> SampleDirections(const DirectionSampling& sampling,
+                                       Random* random);
+
+struct SynthOptions {
+  Quantity quantity = Quantity::kBrdf;
+  // Relative standard deviation of multiplicative Gaussian noise; 0 = none.
+  double noise = 0.0;
+};
+
+// Fills the rows' values with the model's and adds noise. When noise > 0
+// the rows get sigma = noise * |clean value| (at least 1e-12) and the table
+// has_sigma. Negative noisy values are kept (a measurement can be).
+void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
+                      Random* random, MeasurementTable* table);
+
+}  // namespace clothfit

@@ -1,0 +1,106 @@
+#include "io/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+// Distinguishes temporary files of concurrent writers within one process.
+std::atomic<unsigned> temp_counter{0};
+
+[[noreturn]] void ThrowWriteError(const std::string& path, int error) {
+  throw InputError(path + ": cannot write: " + std::strerror(error));
+}
+
+[[noreturn]] void ThrowReadError(const std::string& path, int error) {
+  throw InputError(path + ": cannot read: " + std::strerror(error));
+}
+
+// Writes all of `content` to `fd`; returns 0 or the errno of the failure.
+int WriteAll(int fd, const std::string& content) {
+  const char* data = content.data();
+  size_t left = content.size();
+  while (left > 0) {
+    const ssize_t written = ::write(fd, data, left);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    data += written;
+    left -= static_cast<size_t>(written);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  if (path.empty()) ThrowWriteError(path, ENOENT);
+  // The temporary file lives beside the target so that rename() stays within
+  // one file system and is atomic.
+  std::string temp_path;
+  int fd = -1;
+  for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
+    temp_path = path + ".tmp." + std::to_string(::getpid()) + "." +
+                std::to_string(temp_counter.fetch_add(1));
+    fd = ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
+                0666);
+    if (fd < 0 && errno != EEXIST) ThrowWriteError(path, errno);
+  }
+  if (fd < 0) ThrowWriteError(path, EEXIST);
+
+  int error = WriteAll(fd, content);
+  if (::close(fd) != 0 && error == 0) error = errno;
+  if (error == 0 && std::rename(temp_path.c_str(), path.c_str()) != 0) {
+    error = errno;
+  }
+  if (error != 0) {
+    ::unlink(temp_path.c_str());
+    ThrowWriteError(path, error);
+  }
+}
+
+std::string ReadFileToString(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) ThrowReadError(path, errno);
+  struct stat info;
+  if (::fstat(fd, &info) != 0) {
+    const int error = errno;
+    ::close(fd);
+    ThrowReadError(path, error);
+  }
+  if (S_ISDIR(info.st_mode)) {
+    ::close(fd);
+    ThrowReadError(path, EISDIR);
+  }
+  std::string content;
+  if (S_ISREG(info.st_mode) && info.st_size > 0) {
+    content.reserve(static_cast<size_t>(info.st_size));
+  }
+  char buffer[1 << 16];
+  while (true) {
+    const ssize_t got = ::read(fd, buffer, sizeof(buffer));
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      const int error = errno;
+      ::close(fd);
+      ThrowReadError(path, error);
+    }
+    if (got == 0) break;
+    content.append(buffer, static_cast<size_t>(got));
+  }
+  ::close(fd);
+  return content;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,289 @@
+#include "io/params_json.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+// Ordered, so that a "fit" object keeps its key order through a rewrite.
+using json = nlohmann::ordered_json;
+
+// Walks one JSON object: typed getters that name the key on error, and a
+// final check that no unknown key was left.
+class ObjectReader {
+ public:
+  ObjectReader(const json& object, std::string file, std::string path)
+      : object_(object), file_(std::move(file)), path_(std::move(path)) {
+    if (!object_.is_object()) Fail(path_.empty() ? "(top level)" : path_,
+                                   "must be a JSON object");
+  }
+
+  [[noreturn]] void Fail(const std::string& key,
+                         const std::string& problem) const {
+    throw InputError(file_ + ": key '" + key + "': " + problem);
+  }
+
+  std::string Path(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+
+  bool Has(const std::string& key) const { return object_.contains(key); }
+
+  const json& Get(const std::string& key) {
+    if (!object_.contains(key)) Fail(Path(key), "missing");
+    used_.insert(key);
+    return object_.at(key);
+  }
+
+  double Number(const std::string& key) {
+    const json& v = Get(key);
+    if (!v.is_number()) Fail(Path(key), "must be a number");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) Fail(Path(key), "must be finite");
+    return x;
+  }
+
+  double NumberOr(const std::string& key, double fallback) {
+    return Has(key) ? Number(key) : fallback;
+  }
+
+  std::string String(const std::string& key) {
+    const json& v = Get(key);
+    if (!v.is_string()) Fail(Path(key), "must be a string");
+    return v.get<std::string>();
+  }
+
+  std::vector<double> NumberArray(const std::string& key) {
+    const json& v = Get(key);
+    if (!v.is_array()) Fail(Path(key), "must be an array of numbers");
+    std::vector<double> out;
+    for (size_t i = 0; i < v.size(); ++i) {
+      const std::string where = Path(key) + "[" + std::to_string(i) + "]";
+      if (!v[i].is_number()) Fail(where, "must be a number");
+      out.push_back(v[i].get<double>());
+      if (!std::isfinite(out.back())) Fail(where, "must be finite");
+    }
+    return out;
+  }
+
+  glm::dvec3 Rgb(const std::string& key) {
+    const json& v = Get(key);
+    if (v.is_number()) {
+      const double x = Number(key);
+      return glm::dvec3(x);
+    }
+    const std::vector<double> a = NumberArray(key);
+    if (a.size() != 3) {
+      Fail(Path(key), "must be a number or an array of 3 numbers (r, g, b), "
+                      "got " + std::to_string(a.size()) + " entries");
+    }
+    return glm::dvec3(a[0], a[1], a[2]);
+  }
+
+  // Throws on any key not read.
+  void Finish() const {
+    for (auto it = object_.begin(); it != object_.end(); ++it) {
+      if (!used_.count(it.key())) Fail(Path(it.key()), "unknown key");
+    }
+  }
+
+ private:
+  const json& object_;
+  std::string file_;
+  std::string path_;
+  std::set<std::string> used_;
+};
+
+// The thread-parameter keys, shared by "thread" files and cloth threads.
+ThreadParams ReadThreadKeys(ObjectReader& r) {
+  ThreadParams p;
+  p.eta = r.Number("eta");
+  p.kd = r.Number("kd");
+  p.gamma_s_deg = r.Number("gamma_s_deg");
+  p.gamma_v_deg = r.Number("gamma_v_deg");
+  p.albedo = r.Rgb("albedo");
+  return p;
+}
+
+// Range errors name the key by its path: "threads[0].kd: must be ..." ->
+// key 'threads[0].kd'.
+[[noreturn]] void FailValidation(const std::string& file,
+                                 const std::string& message) {
+  const size_t colon = message.find(": ");
+  if (colon == std::string::npos) throw InputError(file + ": " + message);
+  throw InputError(file + ": key '" + message.substr(0, colon) +
+                   "': " + message.substr(colon + 2));
+}
+
+ClothThread ReadClothThread(const json& object, const std::string& file,
+                            const std::string& path) {
+  ObjectReader r(object, file, path);
+  ClothThread th;
+  const std::string dir = r.String("direction");
+  if (dir == "u") {
+    th.direction = ThreadDirection::kU;
+  } else if (dir == "v") {
+    th.direction = ThreadDirection::kV;
+  } else {
+    r.Fail(r.Path("direction"), "must be \"u\" or \"v\", got \"" + dir + "\"");
+  }
+  th.coverage = r.Number("coverage");
+  const bool explicit_samples = r.Has("offsets_deg");
+  const bool curve = r.Has("curve_offsets_deg") || r.Has("curve_lengths") ||
+                     r.Has("samples");
+  if (explicit_samples && curve) {
+    r.Fail(r.Path("offsets_deg"),
+           "give either offsets_deg or a tangent curve (curve_offsets_deg, "
+           "curve_lengths, samples), not both");
+  }
+  if (explicit_samples) {
+    th.offsets_deg = r.NumberArray("offsets_deg");
+  } else {
+    th.curve.offsets_deg = r.NumberArray("curve_offsets_deg");
+    th.curve.lengths = r.NumberArray("curve_lengths");
+    const double samples = r.Number("samples");
+    if (samples != std::floor(samples)) {
+      r.Fail(r.Path("samples"), "must be an integer");
+    }
+    th.curve.samples =
+        static_cast<int>(std::max(-1.0, std::min(samples, 1e9)));
+    const std::string e = ValidateTangentCurve(th.curve);
+    if (!e.empty()) FailValidation(file, path + "." + e);
+    th.offsets_deg = SampleTangentCurve(th.curve);
+  }
+  th.params = ReadThreadKeys(r);
+  r.Finish();
+  return th;
+}
+
+void WriteThreadKeys(const ThreadParams& p, json* j) {
+  (*j)["eta"] = p.eta;
+  (*j)["kd"] = p.kd;
+  (*j)["gamma_s_deg"] = p.gamma_s_deg;
+  (*j)["gamma_v_deg"] = p.gamma_v_deg;
+  (*j)["albedo"] = {p.albedo.x, p.albedo.y, p.albedo.z};
+}
+
+// Like json::dump(2), but arrays of scalars stay on one line.
+void AppendPretty(const json& j, int indent, std::string* out) {
+  const std::string pad(indent + 2, ' ');
+  if (j.is_object() && !j.empty()) {
+    *out += "{\n";
+    bool first = true;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      if (!first) *out += ",\n";
+      first = false;
+      *out += pad + json(it.key()).dump() + ": ";
+      AppendPretty(it.value(), indent + 2, out);
+    }
+    *out += "\n" + std::string(indent, ' ') + "}";
+    return;
+  }
+  if (j.is_array() && !j.empty()) {
+    bool scalars = true;
+    for (const json& e : j) scalars = scalars && !e.is_structured();
+    *out += scalars ? "[" : "[\n";
+    for (size_t i = 0; i < j.size(); ++i) {
+      if (i > 0) *out += scalars ? ", " : ",\n";
+      if (!scalars) *out += pad;
+      AppendPretty(j[i], indent + 2, out);
+    }
+    *out += scalars ? "]" : "\n" + std::string(indent, ' ') + "]";
+    return;
+  }
+  *out += j.dump();
+}
+
+}  // namespace
+
+const char* ModelName(const ModelParams& params) {
+  return std::holds_alternative<ThreadParams>(params) ? "thread" : "cloth";
+}
+
+ParamFile ParseParamFile(const std::string& text, const std::string& name) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message carries "at line L, column C".
+    std::string what = e.what();
+    const size_t pos = what.find("parse error");
+    throw InputError(name + ": invalid JSON: " +
+                     (pos == std::string::npos ? what : what.substr(pos)));
+  }
+  ObjectReader r(root, name, "");
+  ParamFile out;
+  const std::string model = r.String("model");
+  if (model == "thread") {
+    ThreadParams p = ReadThreadKeys(r);
+    const std::string e = ValidateThreadParams(p);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = p;
+  } else if (model == "cloth") {
+    ClothParams c;
+    const json& threads = r.Get("threads");
+    if (!threads.is_array()) r.Fail("threads", "must be an array of objects");
+    for (size_t j = 0; j < threads.size(); ++j) {
+      c.threads.push_back(ReadClothThread(
+          threads[j], name, "threads[" + std::to_string(j) + "]"));
+    }
+    const std::string e = ValidateClothParams(c);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = c;
+  } else {
+    r.Fail("model", "unknown model \"" + model +
+                        "\" (expected \"thread\" or \"cloth\")");
+  }
+  if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
+  r.Finish();
+  return out;
+}
+
+ParamFile ReadParamFile(const std::string& path) {
+  return ParseParamFile(ReadFileToString(path), path);
+}
+
+std::string FormatParamFile(const ParamFile& file) {
+  json j;
+  j["model"] = ModelName(file.params);
+  if (const auto* p = std::get_if<ThreadParams>(&file.params)) {
+    WriteThreadKeys(*p, &j);
+  } else {
+    const ClothParams& c = std::get<ClothParams>(file.params);
+    json threads = json::array();
+    for (const ClothThread& th : c.threads) {
+      json t;
+      t["direction"] = th.direction == ThreadDirection::kU ? "u" : "v";
+      t["coverage"] = th.coverage;
+      if (th.curve.samples > 0) {
+        t["curve_offsets_deg"] = th.curve.offsets_deg;
+        t["curve_lengths"] = th.curve.lengths;
+        t["samples"] = th.curve.samples;
+      } else {
+        t["offsets_deg"] = th.offsets_deg;
+      }
+      WriteThreadKeys(th.params, &t);
+      threads.push_back(t);
+    }
+    j["threads"] = threads;
+  }
+  if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);
+  std::string out;
+  AppendPretty(j, 0, &out);
+  return out + "\n";
+}
+
+void WriteParamFile(const ParamFile& file, const std::string& path) {
+  WriteFileAtomically(path, FormatParamFile(file));
+}
+
+}  // namespace clothfit

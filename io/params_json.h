@@ -1,0 +1,40 @@
+// Parameter files (SPEC §4): one JSON object with a "model" key.
+//
+//   {"model": "thread", "eta": 1.539, "kd": 0.1, "gamma_s_deg": 2.5,
+//    "gamma_v_deg": 5.0, "albedo": [0.035, 0.01295, 0.0105]}
+//   {"model": "cloth", "threads": [{"direction": "u", "coverage": 0.33,
+//    "offsets_deg": [-25, 25], "eta": 1.46, ...}, ...]}
+//
+// A cloth thread gives its tangent samples either explicitly ("offsets_deg")
+// or as a tangent curve ("curve_offsets_deg", "curve_lengths", "samples").
+// Unknown keys, missing keys, wrong types and out-of-range values are errors
+// that name the file and the key (as a JSON path, e.g. threads[1].kd).
+// A "fit" object (written by `clothfit fit`) is kept verbatim as text.
+#pragma once
+
+#include <string>
+#include <variant>
+
+#include "models/evaluate.h"
+
+namespace clothfit {
+
+struct ParamFile {
+  ModelParams params;
+  // The "fit" object as serialised JSON text, empty when absent.
+  std::string fit_json;
+};
+
+// "thread" | "cloth".
+const char* ModelName(const ModelParams& params);
+
+// Throws InputError naming `name` and the key on any problem.
+ParamFile ParseParamFile(const std::string& text, const std::string& name);
+ParamFile ReadParamFile(const std::string& path);
+
+// Pretty-printed JSON (2-space indent, 17 significant digits).
+std::string FormatParamFile(const ParamFile& file);
+// Atomic write (io/atomic_file.h). Throws InputError when it cannot write.
+void WriteParamFile(const ParamFile& file, const std::string& path);
+
+}  // namespace clothfit

@@ -1,0 +1,92 @@
+// Measurement tables (SPEC §2): CSV with '#' metadata lines and a header row.
+//
+//   # clothfit-table 1
+//   # quantity: brdf            brdf | cosine_weighted | transmittance
+//   # units: degrees            degrees | radians
+//   theta_i,phi_i,theta_o,phi_o,r,g,b
+//
+// Directions are stored as unit vectors (wi towards the light, wo towards the
+// viewer, both pointing away from the surface). Values carry one channel
+// ("value") or three ("r,g,b"); a one-channel table keeps its value in all
+// three components of `value` so that models can be evaluated per channel.
+#pragma once
+
+#include <glm/vec3.hpp>
+
+#include "models/quantity.h"
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace clothfit {
+
+enum class DirectionColumns { kAngles, kVectors };
+
+// "brdf" | "cosine_weighted" | "transmittance"; std::nullopt if unknown.
+std::optional<Quantity> ParseQuantity(const std::string& text);
+const char* QuantityName(Quantity quantity);
+
+struct TableRow {
+  glm::dvec3 wi{0.0, 0.0, 1.0};     // unit vector towards the light
+  glm::dvec3 wo{0.0, 0.0, 1.0};     // unit vector towards the viewer
+  glm::dvec3 value{0.0};            // measured quantity per channel
+  glm::dvec3 sigma{1.0};            // 1-sigma error per channel (> 0)
+  double weight = 1.0;              // residual weight (>= 0)
+  int s = -1, t = -1;               // texel indices, -1 when absent
+  int source_line = 0;              // 1-based line in the file (0: made in memory)
+};
+
+struct MeasurementTable {
+  // Metadata lines in file order, keys lower-cased; unknown keys are kept.
+  std::vector<std::pair<std::string, std::string>> metadata;
+  Quantity quantity = Quantity::kBrdf;
+  int channels = 3;                 // 1 ("value") or 3 ("r,g,b")
+  DirectionColumns direction_columns = DirectionColumns::kAngles;
+  bool has_sigma = false;
+  bool has_weight = false;
+  bool has_texels = false;          // s,t columns present
+  std::vector<TableRow> rows;
+
+  // Value of a metadata key (case-insensitive), if present.
+  std::optional<std::string> Meta(const std::string& key) const;
+  // Sets (or replaces) a metadata key.
+  void SetMeta(const std::string& key, const std::string& value);
+};
+
+struct ReadTableOptions {
+  // Drop rows that fail validation instead of failing; the number dropped is
+  // returned in ReadTableResult::skipped together with the first reason.
+  bool skip_invalid = false;
+  // Accept a table without value columns (a list of directions, as
+  // `clothfit eval --dirs` takes); values are then 0 and channels 3.
+  bool values_optional = false;
+};
+
+struct ReadTableResult {
+  MeasurementTable table;
+  int skipped = 0;
+  std::string first_skip_reason;   // "file:line:col: problem" of the first
+};
+
+// Reads a table. Throws InputError naming file, line and column on bad input:
+// missing/duplicate/unknown column, unparsable number, NaN/Inf, angle out of
+// range, zero direction vector, negative sigma, wrong field count, empty table.
+ReadTableResult ReadTable(const std::string& path,
+                          const ReadTableOptions& options = {});
+// Same, from text already in memory; `name` is used in messages.
+ReadTableResult ParseTable(const std::string& text, const std::string& name,
+                           const ReadTableOptions& options = {});
+
+// Writes a table (17 significant digits, metadata first). The file is written
+// to a temporary name and renamed into place when complete. Throws
+// InputError if the path cannot be written.
+void WriteTable(const MeasurementTable& table, const std::string& path);
+std::string FormatTable(const MeasurementTable& table);
+
+// Spherical angles (radians) <-> unit vectors, SPEC §1.
+glm::dvec3 DirectionFromAngles(double theta, double phi);
+void AnglesFromDirection(const glm::dvec3& w, double* theta, double* phi);
+
+}  // namespace clothfit

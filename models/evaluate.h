@@ -1,0 +1,50 @@
+// Model outputs as the quantities that tables hold, one place for the
+// conversions f <-> rho = f |wi.z| (SPEC §1). Templated on the scalar type.
+#pragma once
+
+#include <variant>
+
+#include "models/math.h"
+#include "models/microcylinder_cloth.h"
+#include "models/microcylinder_thread.h"
+#include "models/quantity.h"
+
+namespace clothfit {
+
+using ModelParams = std::variant<ThreadParams, ClothParams>;
+
+// Whether a model can predict a quantity (neither predicts transmittance).
+inline bool ModelPredicts(const ModelParams& /*params*/, Quantity q) {
+  return q == Quantity::kBrdf || q == Quantity::kCosineWeighted;
+}
+
+// A thread alone, in the thread frame (tangent +x, normal +z).
+template <typename T>
+Vec3<T> ThreadValue(const ThreadParamsT<T>& p, const Vec3<T>& wi,
+                    const Vec3<T>& wo, Quantity q) {
+  using std::abs;
+  const Vec3<T> f = ThreadBsdfLocal(p, wi, wo);
+  return q == Quantity::kCosineWeighted ? f * abs(wi.z) : f;
+}
+
+// A cloth patch in the surface frame; reflection only.
+template <typename T>
+Vec3<T> ClothValue(const ClothParamsT<T>& c, const Vec3<T>& wi,
+                   const Vec3<T>& wo, Quantity q) {
+  const Vec3<T> rho = ClothRho(c, wi, wo);
+  return q == Quantity::kCosineWeighted
+             ? rho
+             : rho / Max(wi.z, T(kMinCosIncidence));
+}
+
+// Double-precision evaluation of any parameter set. Requires
+// ModelPredicts(params, q).
+inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
+                           const glm::dvec3& wo, Quantity q) {
+  if (const auto* p = std::get_if<ThreadParams>(&params)) {
+    return ThreadValue(*p, wi, wo, q);
+  }
+  return ClothValue(std::get<ClothParams>(params), wi, wo, q);
+}
+
+}  // namespace clothfit

@@ -1,0 +1,87 @@
+// Scalar helpers shared by the models. Every function is templated on the
+// scalar type T so that it evaluates both double and Ceres Jets; comparisons
+// use the value part only, which is what Jets implement.
+#pragma once
+
+#include <cmath>
+
+// GLM's vectors hold x/r/s in anonymous unions, which delete copying for
+// scalar types with non-trivial copies such as Ceres Jets. Plain x, y, z
+// members fix that; the clothfit::models target sets this for every user.
+#ifndef GLM_FORCE_XYZW_ONLY
+#define GLM_FORCE_XYZW_ONLY
+#endif
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace clothfit {
+
+inline constexpr double kPi = 3.14159265358979323846;
+
+template <typename T>
+using Vec3 = glm::vec<3, T>;
+
+template <typename T>
+inline T Sqr(const T& x) {
+  return x * x;
+}
+
+template <typename T>
+inline T Max(const T& a, const T& b) {
+  return a > b ? a : b;
+}
+
+template <typename T>
+inline T Min(const T& a, const T& b) {
+  return a < b ? a : b;
+}
+
+template <typename T>
+inline T Clamp(const T& x, const T& lo, const T& hi) {
+  return Min(Max(x, lo), hi);
+}
+
+// sqrt(max(x, 0)), with value and derivative 0 at x <= 0 (the derivative of
+// sqrt at 0 is infinite, which would poison a Jacobian with Inf).
+template <typename T>
+inline T SafeSqrt(const T& x) {
+  using std::sqrt;
+  if (!(x > T(0))) return T(0) * x;
+  return sqrt(x);
+}
+
+template <typename T>
+inline T Radians(const T& degrees) {
+  return degrees * T(kPi / 180.0);
+}
+
+template <typename T>
+inline T Degrees(const T& radians) {
+  return radians * T(180.0 / kPi);
+}
+
+// Converts a double vector to the scalar type T.
+template <typename T>
+inline Vec3<T> Cast(const glm::dvec3& v) {
+  return Vec3<T>(T(v.x), T(v.y), T(v.z));
+}
+
+// Unsigned angle in [0, pi] between vectors a and b whose lengths multiply to
+// `norm_product`, by the half-angle form angle = 2 atan(|a x b| / (|a||b| +
+// a.b)), switching to pi - 2 atan(|a x b| / (|a||b| - a.b)) for obtuse angles
+// so that the denominator never falls below |a||b|. Accurate near 0 and pi
+// (unlike acos of a dot product) and about twice as fast as atan2.
+template <typename T>
+inline T AngleBetween(const Vec3<T>& a, const Vec3<T>& b,
+                      const T& norm_product) {
+  using std::atan;
+  const Vec3<T> c = glm::cross(a, b);
+  const T sin_part = SafeSqrt(glm::dot(c, c));
+  const T cos_part = glm::dot(a, b);
+  if (cos_part >= T(0.0)) {
+    return T(2.0) * atan(sin_part / (norm_product + cos_part));
+  }
+  return T(kPi) - T(2.0) * atan(sin_part / (norm_product - cos_part));
+}
+
+}  // namespace clothfit

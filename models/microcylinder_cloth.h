@@ -1,0 +1,247 @@
+// Cloth patch of the microcylinder model (Sadeghi et al. 2013, eq. 5-13;
+// SPEC §3.2): threads of a weave with coverages and tangent samples,
+// shadowing/masking M and reweighting P. Templated on the scalar type.
+//
+// For thread j (direction d = +x for "u", +y for "v") with tangent samples at
+// offsets psi (rotations of the tangent towards +z):
+//   t   = cos(psi) d + sin(psi) z,   n_t = -sin(psi) d + cos(psi) z
+//   u(x) = exp(-x^2 / (2 (20 deg)^2))                           (eq. 9)
+//   M = (1 - u(phi_d)) max(cos phi_i, 0) max(cos phi_o, 0)
+//       + u(phi_d) min(max(cos phi_i, 0), max(cos phi_o, 0))     (eq. 8)
+//   P = the same with psi in place of phi                        (eq. 10)
+//   S_j = 1/T_j sum_t f_s(t) M(t) P(t) cos(theta_i(t))           (eq. 11)
+//   W_j = 1/T_j sum_t P(t)
+//   Q   = sum_j a_j W_j + (1 - sum_j a_j) wi.z                   (eq. 12-13)
+//   rho = sum_j a_j S_j / Q   (0 where Q <= 0),  f = rho / wi.z.
+// Reflection only: rho = 0 unless wi.z > 0 and wo.z > 0.
+#pragma once
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "models/math.h"
+#include "models/microcylinder_thread.h"
+
+namespace clothfit {
+
+enum class ThreadDirection { kU, kV };  // warp along +x, weft along +y
+
+// A piecewise-linear tangent curve (Appendix A, Table 3): offsets at the
+// control points and the length of each segment between them (a zero length
+// is a jump), sampled at `samples` equidistant points (m + 0.5) L / T.
+struct TangentCurve {
+  std::vector<double> offsets_deg;  // K control-point offsets, degrees
+  std::vector<double> lengths;      // K - 1 segment lengths, >= 0, sum > 0
+  int samples = 0;                  // T >= 1
+};
+
+// Samples a curve (SPEC §3.2). Requires ValidateTangentCurve(c).empty().
+inline std::vector<double> SampleTangentCurve(const TangentCurve& c) {
+  double total = 0.0;
+  for (double l : c.lengths) total += l;
+  std::vector<double> out;
+  out.reserve(c.samples);
+  size_t k = 0;
+  double start = 0.0;  // arc length at the start of segment k
+  for (int m = 0; m < c.samples; ++m) {
+    const double x = (m + 0.5) * total / c.samples;
+    // Advance to the segment holding x; zero-length segments are skipped.
+    while (k + 1 < c.lengths.size() &&
+           (c.lengths[k] == 0.0 || x >= start + c.lengths[k])) {
+      start += c.lengths[k];
+      ++k;
+    }
+    const double s = c.lengths[k] > 0.0
+                         ? Clamp((x - start) / c.lengths[k], 0.0, 1.0)
+                         : 1.0;
+    out.push_back(c.offsets_deg[k] +
+                  s * (c.offsets_deg[k + 1] - c.offsets_deg[k]));
+  }
+  return out;
+}
+
+inline std::string ValidateTangentCurve(const TangentCurve& c) {
+  std::ostringstream msg;
+  double total = 0.0;
+  for (double l : c.lengths) {
+    if (!(std::isfinite(l) && l >= 0.0)) {
+      msg << "curve_lengths: must be finite and >= 0, got " << l;
+      return msg.str();
+    }
+    total += l;
+  }
+  if (c.offsets_deg.size() < 2) {
+    msg << "curve_offsets_deg: needs at least 2 control points, got "
+        << c.offsets_deg.size();
+  } else if (c.lengths.size() + 1 != c.offsets_deg.size()) {
+    msg << "curve_lengths: needs " << c.offsets_deg.size() - 1
+        << " entries (one per segment), got " << c.lengths.size();
+  } else if (!(total > 0.0)) {
+    msg << "curve_lengths: total length must be > 0";
+  } else if (c.samples < 1 || c.samples > 10000) {
+    msg << "samples: must be in [1, 10000], got " << c.samples;
+  }
+  for (double o : c.offsets_deg) {
+    if (msg.str().empty() && !(std::isfinite(o) && std::abs(o) <= 90.0)) {
+      msg << "curve_offsets_deg: must be in [-90, 90], got " << o;
+    }
+  }
+  return msg.str();
+}
+
+// One thread type of a weave.
+template <typename T>
+struct ClothThreadT {
+  // Direction of the thread in the surface frame (SPEC §1).
+  ThreadDirection direction = ThreadDirection::kU;
+  // Fraction of the patch this thread covers, a_j; [0, 1], sum over threads
+  // <= 1 (the rest is gaps). Eq. 12, Table 3 ("a").
+  T coverage = T(0.33);
+  // Tangent offsets of the samples C_j; degrees, [-90, 90]. Eq. 11, Table 3.
+  std::vector<T> offsets_deg = {T(-25.0), T(25.0)};
+  // When the file gave a tangent curve, the curve (offsets_deg holds its
+  // samples); curve.samples == 0 means the samples were given explicitly.
+  TangentCurve curve;
+  // Scattering parameters of the thread (eq. 2-4).
+  ThreadParamsT<T> params;
+};
+
+template <typename T>
+struct ClothParamsT {
+  std::vector<ClothThreadT<T>> threads;
+};
+using ClothThread = ClothThreadT<double>;
+using ClothParams = ClothParamsT<double>;
+
+// Number of entries of the flat layout below.
+template <typename T>
+int ClothArraySize(const ClothParamsT<T>& c) {
+  int n = 0;
+  for (const auto& th : c.threads) {
+    n += 1 + ThreadParams::kSize + static_cast<int>(th.offsets_deg.size());
+  }
+  return n;
+}
+
+// Flat layout shared by Ceres and io/: per thread, in order,
+// [coverage, ThreadParams (7), offsets_deg...].
+template <typename T>
+void ToArray(const ClothParamsT<T>& c, T* x) {
+  for (const auto& th : c.threads) {
+    *x++ = th.coverage;
+    ToArray(th.params, x);
+    x += ThreadParams::kSize;
+    for (const T& o : th.offsets_deg) *x++ = o;
+  }
+}
+
+// Inverse of ToArray; `layout` gives the number of threads, their
+// directions, curves and sample counts.
+template <typename T>
+ClothParamsT<T> ClothParamsFromArray(const T* x, const ClothParams& layout) {
+  ClothParamsT<T> c;
+  for (const ClothThread& th : layout.threads) {
+    ClothThreadT<T> out;
+    out.direction = th.direction;
+    out.curve = th.curve;
+    out.coverage = *x++;
+    out.params = ThreadParamsFromArray(x);
+    x += ThreadParams::kSize;
+    out.offsets_deg.assign(x, x + th.offsets_deg.size());
+    x += th.offsets_deg.size();
+    c.threads.push_back(out);
+  }
+  return c;
+}
+
+inline std::string ValidateClothParams(const ClothParams& c) {
+  std::ostringstream msg;
+  if (c.threads.empty()) return "threads: at least one thread is required";
+  double sum = 0.0;
+  for (size_t j = 0; j < c.threads.size(); ++j) {
+    const ClothThread& th = c.threads[j];
+    const std::string where = "threads[" + std::to_string(j) + "].";
+    if (!(std::isfinite(th.coverage) && th.coverage >= 0.0 &&
+          th.coverage <= 1.0)) {
+      msg << where << "coverage: must be in [0, 1], got " << th.coverage;
+      return msg.str();
+    }
+    sum += th.coverage;
+    if (th.offsets_deg.empty()) {
+      return where + "offsets_deg: at least one tangent sample is required";
+    }
+    for (double o : th.offsets_deg) {
+      if (!(std::isfinite(o) && std::abs(o) <= 90.0)) {
+        msg << where << "offsets_deg: must be in [-90, 90], got " << o;
+        return msg.str();
+      }
+    }
+    const std::string e = ValidateThreadParams(th.params);
+    if (!e.empty()) return where + e;
+  }
+  if (sum > 1.0 + 1e-9) {
+    msg << "threads: coverages sum to " << sum << ", must be <= 1";
+  }
+  return msg.str();
+}
+
+// Shadowing/masking M (eq. 8) or reweighting P (eq. 10) from the cosines of
+// the two projections and the angle between them.
+template <typename T>
+T MaskingTerm(const T& cos_i, const T& cos_o, const T& angle_d) {
+  using std::exp;
+  constexpr double kWidth = 20.0 * kPi / 180.0;  // u(x), eq. 9
+  // Both terms vanish (value and derivative) unless both cosines are > 0.
+  if (!(cos_i > T(0.0) && cos_o > T(0.0))) return T(0.0);
+  const T u = exp(-angle_d * angle_d / T(2.0 * kWidth * kWidth));
+  return (T(1.0) - u) * cos_i * cos_o + u * Min(cos_i, cos_o);
+}
+
+// Cosine-weighted BRDF rho(wi, wo) = f |wi.z| of a cloth patch, per channel.
+template <typename T>
+Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
+                 const Vec3<T>& wo) {
+  using std::cos;
+  using std::sin;
+  const Vec3<T> zero(T(0.0));
+  if (!(wi.z > T(0.0) && wo.z > T(0.0))) return zero;
+  Vec3<T> sum = zero;
+  T q(0.0);
+  T coverage_sum(0.0);
+  for (const ClothThreadT<T>& th : cloth.threads) {
+    const Vec3<T> d = th.direction == ThreadDirection::kU
+                          ? Vec3<T>(T(1.0), T(0.0), T(0.0))
+                          : Vec3<T>(T(0.0), T(1.0), T(0.0));
+    const Vec3<T> z(T(0.0), T(0.0), T(1.0));
+    coverage_sum += th.coverage;
+    if (th.offsets_deg.empty()) continue;
+    Vec3<T> s = zero;
+    T w(0.0);
+    for (const T& offset_deg : th.offsets_deg) {
+      const T psi = Radians(offset_deg);
+      const T c = cos(psi), sn = sin(psi);
+      const Vec3<T> t = d * c + z * sn;
+      const Vec3<T> n = z * c - d * sn;
+      const ThreadGeometry<T> g = ComputeThreadGeometry(t, n, wi, wo);
+      if (!g.valid || !g.psi_valid) continue;  // SPEC: contributes nothing
+      const T p = MaskingTerm(g.cos_psi_i, g.cos_psi_o, g.psi_d);
+      w += p;
+      const T mp = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * p;
+      if (mp > T(0.0)) s += ThreadBsdf(g, th.params) * (mp * g.cos_theta_i);
+    }
+    const T inv_count = T(1.0 / static_cast<double>(th.offsets_deg.size()));
+    sum += s * (th.coverage * inv_count);
+    q += th.coverage * w * inv_count;
+  }
+  q += (T(1.0) - coverage_sum) * wi.z;
+  if (!(q > T(0.0))) return zero;
+  return sum / q;
+}
+
+// Smallest wi.z used to turn rho into the BRDF f = rho / wi.z, so that f
+// stays finite at exactly grazing incidence (models/evaluate.h).
+inline constexpr double kMinCosIncidence = 1e-7;
+
+}  // namespace clothfit

@@ -1,0 +1,251 @@
+// Thread BSDF of the microcylinder cloth model (Sadeghi et al. 2013, eq. 2-4;
+// SPEC §3.1), templated on the scalar type so that the same code evaluates
+// double and Ceres Jets.
+//
+// A thread is a locally straight cylinder with tangent t. For a direction w,
+//   theta = asin(w.t)                      (longitudinal angle, [-pi/2, pi/2])
+//   phi   = azimuth of w's projection on the normal plane of t,
+// and theta_h = (theta_i + theta_o)/2, theta_d = (theta_i - theta_o)/2,
+// phi_d = unsigned angle between the two azimuthal projections. Then
+//   g(s, x) = exp(-x^2 / (2 s^2)) / (s sqrt(2 pi))
+//   Fr      = dielectric Fresnel at cos = cos(theta_d) cos(phi_d / 2)
+//   f_rs    = Fr cos(phi_d / 2) g(gamma_s, theta_h)                    (eq. 3)
+//   f_rv    = (1 - Fr)^2 ((1 - kd) g(gamma_v, theta_h) + kd)
+//             / (cos theta_i + cos theta_o) * albedo                   (eq. 4)
+//   f_s     = (f_rs + f_rv) / cos^2(theta_d)                           (eq. 2)
+// (1 - Fr)^2 stands for the paper's F_t(eta, wi) F_t(eta', wo').
+//
+// Numerics: cos(theta) is the length of w's projection on the normal plane,
+// theta_h and the azimuth differences come from half-angle arctangents (see
+// ComputeThreadGeometry and AngleBetween); these stay accurate and
+// differentiable up to the poles, where asin/acos of a dot product lose both. A direction along t
+// has no azimuth: ThreadGeometry::valid is false and the sample contributes
+// nothing (SPEC §3.1).
+#pragma once
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "models/math.h"
+
+namespace clothfit {
+
+// Parameters of one thread type. Defaults: Linen Plain (Table 2).
+template <typename T>
+struct ThreadParamsT {
+  // Index of refraction of the fibres; unitless, (1, 5]. Eq. 3 (Fresnel),
+  // Table 2 ("eta").
+  T eta = T(1.46);
+  // Fraction of volume scattering that is isotropic; [0, 1]. Eq. 4 ("k_d").
+  T kd = T(0.3);
+  // Width of the surface-reflection Gaussian; degrees, (0, 90]. Eq. 3
+  // ("gamma_s").
+  T gamma_s_deg = T(12.0);
+  // Width of the volume-scattering Gaussian; degrees, (0, 90]. Eq. 4
+  // ("gamma_v").
+  T gamma_v_deg = T(24.0);
+  // Volume-scattering albedo per channel (r, g, b); >= 0, usually <= 1.
+  // Eq. 4 ("A").
+  Vec3<T> albedo = Vec3<T>(T(0.06), T(0.24), T(0.3));
+
+  static constexpr int kSize = 7;  // entries of ToArray
+};
+using ThreadParams = ThreadParamsT<double>;
+
+// Flat layout shared by Ceres and io/:
+// [eta, kd, gamma_s_deg, gamma_v_deg, albedo_r, albedo_g, albedo_b].
+template <typename T>
+void ToArray(const ThreadParamsT<T>& p, T* x) {
+  x[0] = p.eta;
+  x[1] = p.kd;
+  x[2] = p.gamma_s_deg;
+  x[3] = p.gamma_v_deg;
+  x[4] = p.albedo.x;
+  x[5] = p.albedo.y;
+  x[6] = p.albedo.z;
+}
+
+template <typename T>
+ThreadParamsT<T> ThreadParamsFromArray(const T* x) {
+  ThreadParamsT<T> p;
+  p.eta = x[0];
+  p.kd = x[1];
+  p.gamma_s_deg = x[2];
+  p.gamma_v_deg = x[3];
+  p.albedo = Vec3<T>(x[4], x[5], x[6]);
+  return p;
+}
+
+// Names of the ToArray entries, in order (for reports and --fix/--free).
+inline const char* const* ThreadParamNames() {
+  static const char* const kNames[ThreadParams::kSize] = {
+      "eta",      "kd",       "gamma_s_deg", "gamma_v_deg",
+      "albedo_r", "albedo_g", "albedo_b"};
+  return kNames;
+}
+
+// Checks the documented ranges; returns "" when valid, otherwise a message
+// that names the field, e.g. "gamma_s_deg: must be in (0, 90], got -1".
+inline std::string ValidateThreadParams(const ThreadParams& p) {
+  std::ostringstream msg;
+  auto in = [](double v, double lo, double hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  if (!(std::isfinite(p.eta) && p.eta > 1.0 && p.eta <= 5.0)) {
+    msg << "eta: must be in (1, 5], got " << p.eta;
+  } else if (!in(p.kd, 0.0, 1.0)) {
+    msg << "kd: must be in [0, 1], got " << p.kd;
+  } else if (!(std::isfinite(p.gamma_s_deg) && p.gamma_s_deg > 0.0 &&
+               p.gamma_s_deg <= 90.0)) {
+    msg << "gamma_s_deg: must be in (0, 90], got " << p.gamma_s_deg;
+  } else if (!(std::isfinite(p.gamma_v_deg) && p.gamma_v_deg > 0.0 &&
+               p.gamma_v_deg <= 90.0)) {
+    msg << "gamma_v_deg: must be in (0, 90], got " << p.gamma_v_deg;
+  } else {
+    for (int c = 0; c < 3; ++c) {
+      if (!(std::isfinite(p.albedo[c]) && p.albedo[c] >= 0.0)) {
+        msg << "albedo: component " << c << " must be >= 0, got "
+            << p.albedo[c];
+        break;
+      }
+    }
+  }
+  return msg.str();
+}
+
+// Unit-area Gaussian of width s (radians), SPEC §3.1 g(s, x).
+template <typename T>
+T NormalizedGaussian(const T& s, const T& x) {
+  using std::exp;
+  using std::sqrt;
+  return exp(-x * x / (T(2.0) * s * s)) / (s * T(std::sqrt(2.0 * kPi)));
+}
+
+// Unpolarised Fresnel reflectance of a dielectric of relative index eta > 1
+// for cos_theta in [0, 1] (Cook and Torrance 1982, the exact form).
+template <typename T>
+T FresnelDielectric(const T& cos_theta, const T& eta) {
+  using std::sqrt;
+  const T c = Clamp(cos_theta, T(0.0), T(1.0));
+  const T g = sqrt(eta * eta - T(1.0) + c * c);
+  const T a = T(0.5) * Sqr(g - c) / Sqr(g + c);
+  const T b = T(1.0) + Sqr(c * (g + c) - T(1.0)) / Sqr(c * (g - c) + T(1.0));
+  return a * b;
+}
+
+// Angles of a (wi, wo) pair relative to one thread (tangent t, local normal
+// n perpendicular to t, and b = t x n).
+template <typename T>
+struct ThreadGeometry {
+  bool valid = false;      // theta/phi defined (azimuthal projections > 0)
+  bool psi_valid = false;  // psi defined (projections on (t, n) > 0)
+  T sin_theta_i, sin_theta_o;
+  T cos_theta_i, cos_theta_o;
+  T theta_h;               // (theta_i + theta_o) / 2
+  T cos2_theta_d;          // cos^2((theta_i - theta_o) / 2)
+  T cos_half_phi_d;        // cos(phi_d / 2)
+  T cos_phi_i, cos_phi_o;  // azimuthal projections against n
+  T cos_psi_i, cos_psi_o;  // projections on (t, n) against n
+  // phi_d, psi_d in [0, pi]. They enter only the masking terms M and P,
+  // which vanish unless both of their cosines are positive; elsewhere they
+  // are left at 0 to spare two arctangents.
+  T phi_d = T(0.0);
+  T psi_d = T(0.0);
+};
+
+// Projections shorter than this (squared) count as zero length.
+inline constexpr double kMinProjectionLength2 = 1e-24;
+
+template <typename T>
+ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
+                                        const Vec3<T>& wi, const Vec3<T>& wo) {
+  using std::atan;
+  using std::sqrt;
+  ThreadGeometry<T> g;
+  g.sin_theta_i = glm::dot(wi, t);
+  g.sin_theta_o = glm::dot(wo, t);
+  // Projections on the normal plane of t (azimuth phi).
+  const Vec3<T> pi = wi - t * g.sin_theta_i;
+  const Vec3<T> po = wo - t * g.sin_theta_o;
+  const T pi2 = glm::dot(pi, pi);
+  const T po2 = glm::dot(po, po);
+  // Projections on the plane of t and n (psi): remove the b component.
+  const Vec3<T> b = glm::cross(t, n);
+  const Vec3<T> qi = wi - b * glm::dot(wi, b);
+  const Vec3<T> qo = wo - b * glm::dot(wo, b);
+  const T qi2 = glm::dot(qi, qi);
+  const T qo2 = glm::dot(qo, qo);
+  const T kMin(kMinProjectionLength2);
+  if (!(pi2 > kMin && po2 > kMin)) return g;
+  g.valid = true;
+  g.cos_theta_i = sqrt(pi2);
+  g.cos_theta_o = sqrt(po2);
+  // Half-angle identities spare three of the four trigonometric calls:
+  //   theta_h = atan(sin(theta_i + theta_o) / (1 + cos(theta_i + theta_o)))
+  //   cos^2(theta_d) = (1 + cos(theta_i - theta_o)) / 2
+  //   cos(phi_d / 2) = sqrt((1 + cos phi_d) / 2).
+  // theta_i + theta_o lies in (-pi, pi) for valid geometry, so the first
+  // denominator is positive.
+  const T cos_sum = g.cos_theta_i * g.cos_theta_o -
+                    g.sin_theta_i * g.sin_theta_o;
+  const T sin_sum = g.sin_theta_i * g.cos_theta_o +
+                    g.cos_theta_i * g.sin_theta_o;
+  const T cos_diff = g.cos_theta_i * g.cos_theta_o +
+                     g.sin_theta_i * g.sin_theta_o;
+  g.theta_h = atan(sin_sum / (T(1.0) + cos_sum));
+  g.cos2_theta_d = Max(T(0.5) * (T(1.0) + cos_diff), T(0.0));
+  const T cos_phi_d = Clamp(glm::dot(pi, po) / (g.cos_theta_i * g.cos_theta_o),
+                            T(-1.0), T(1.0));
+  g.cos_half_phi_d = SafeSqrt(T(0.5) * (T(1.0) + cos_phi_d));
+  g.cos_phi_i = glm::dot(pi, n) / g.cos_theta_i;
+  g.cos_phi_o = glm::dot(po, n) / g.cos_theta_o;
+  if (g.cos_phi_i > T(0.0) && g.cos_phi_o > T(0.0)) {
+    g.phi_d = AngleBetween(pi, po, g.cos_theta_i * g.cos_theta_o);
+  }
+  if (!(qi2 > kMin && qo2 > kMin)) return g;
+  g.psi_valid = true;
+  const T qi_len = sqrt(qi2);
+  const T qo_len = sqrt(qo2);
+  g.cos_psi_i = glm::dot(qi, n) / qi_len;
+  g.cos_psi_o = glm::dot(qo, n) / qo_len;
+  if (g.cos_psi_i > T(0.0) && g.cos_psi_o > T(0.0)) {
+    g.psi_d = AngleBetween(qi, qo, qi_len * qo_len);
+  }
+  return g;
+}
+
+// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4).
+template <typename T>
+Vec3<T> ThreadBsdf(const ThreadGeometry<T>& g, const ThreadParamsT<T>& p) {
+  const T gamma_s = Radians(p.gamma_s_deg);
+  const T gamma_v = Radians(p.gamma_v_deg);
+  using std::sqrt;
+  const T cos_half_phi_d = g.cos_half_phi_d;
+  const T fr = FresnelDielectric(sqrt(g.cos2_theta_d) * cos_half_phi_d, p.eta);
+  const T f_rs = fr * cos_half_phi_d * NormalizedGaussian(gamma_s, g.theta_h);
+  const T volume = Sqr(T(1.0) - fr) *
+                   ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, g.theta_h) +
+                    p.kd) /
+                   (g.cos_theta_i + g.cos_theta_o);
+  const T inv_cos2 = T(1.0) / g.cos2_theta_d;
+  return Vec3<T>(f_rs + volume * p.albedo.x, f_rs + volume * p.albedo.y,
+                 f_rs + volume * p.albedo.z) *
+         inv_cos2;
+}
+
+// The thread BSDF in the thread frame of SPEC §2 (tangent +x, normal +z):
+// what a thread table measures. Zero where the geometry is undefined.
+template <typename T>
+Vec3<T> ThreadBsdfLocal(const ThreadParamsT<T>& p, const Vec3<T>& wi,
+                        const Vec3<T>& wo) {
+  const Vec3<T> t(T(1.0), T(0.0), T(0.0));
+  const Vec3<T> n(T(0.0), T(0.0), T(1.0));
+  const ThreadGeometry<T> g = ComputeThreadGeometry(t, n, wi, wo);
+  if (!g.valid) return Vec3<T>(T(0.0));
+  return ThreadBsdf(g, p);
+}
+
+}  // namespace clothfit

@@ -1,0 +1,378 @@
+// Thread BSDF and cloth patch (models/microcylinder_*.h, SPEC §3.1-3.2).
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
+#include "models/evaluate.h"
+#include "models/presets.h"
+
+namespace clothfit {
+namespace {
+
+glm::dvec3 Dir(double theta_deg, double phi_deg) {
+  const double t = Radians(theta_deg), p = Radians(phi_deg);
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+ClothParams Preset(const std::string& name) {
+  ClothParams c;
+  EXPECT_TRUE(GetPreset(name, &c)) << name;
+  return c;
+}
+
+// Every row of the independent implementation's output (SPEC §3.2).
+TEST(MicrocylinderConformance, MatchesIndependentImplementation) {
+  const std::string path =
+      std::string(CLOTHFIT_SHARED_DIR) + "/data/conformance/microcylinder_rho.csv";
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << "cannot open " << path;
+  std::string line;
+  std::getline(in, line);
+  ASSERT_EQ(line, "preset,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,rho_r,rho_g,rho_b");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::string name, field;
+    std::getline(ss, name, ',');
+    double v[9];
+    for (double& x : v) {
+      std::getline(ss, field, ',');
+      x = std::stod(field);
+    }
+    const glm::dvec3 rho = ClothRho(Preset(name), glm::dvec3(v[0], v[1], v[2]),
+                                    glm::dvec3(v[3], v[4], v[5]));
+    for (int c = 0; c < 3; ++c) {
+      const double ref = v[6 + c];
+      EXPECT_NEAR(rho[c], ref, 1e-6 * std::abs(ref) + 1e-300)
+          << name << " row " << rows + 2 << " channel " << c;
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 300);
+}
+
+using Jet7 = ceres::Jet<double, ThreadParams::kSize>;
+
+ThreadParamsT<Jet7> SeedThread(const ThreadParams& p) {
+  double x[ThreadParams::kSize];
+  ToArray(p, x);
+  Jet7 j[ThreadParams::kSize];
+  for (int i = 0; i < ThreadParams::kSize; ++i) j[i] = Jet7(x[i], i);
+  return ThreadParamsFromArray(j);
+}
+
+TEST(ThreadBsdf, JetAndDoubleAgreeAndGradientMatchesFiniteDifferences) {
+  ThreadParams p;
+  p.eta = 1.5;
+  p.kd = 0.25;
+  p.gamma_s_deg = 9.0;
+  p.gamma_v_deg = 21.0;
+  p.albedo = {0.3, 0.5, 0.7};
+  const ThreadParamsT<Jet7> pj = SeedThread(p);
+  const std::vector<std::pair<glm::dvec3, glm::dvec3>> pairs = {
+      {Dir(30, 10), Dir(40, 200)}, {Dir(70, -40), Dir(120, 60)},
+      {Dir(5, 0), Dir(85, 180)},   {Dir(89.9, 90), Dir(60, -90)}};
+  for (const auto& [wi, wo] : pairs) {
+    for (Quantity q : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
+      const glm::dvec3 f = ThreadValue(p, wi, wo, q);
+      const Vec3<Jet7> fj = ThreadValue(pj, Cast<Jet7>(wi), Cast<Jet7>(wo), q);
+      for (int c = 0; c < 3; ++c) {
+        // Equal up to rounding: Ceres divides as a * (1 / b).
+        EXPECT_NEAR(fj[c].a, f[c], 1e-12 * std::abs(f[c]));
+        for (int k = 0; k < ThreadParams::kSize; ++k) {
+          double x[ThreadParams::kSize];
+          ToArray(p, x);
+          const double h = 1e-6 * std::max(1.0, std::abs(x[k]));
+          x[k] += h;
+          const double up = ThreadValue(ThreadParamsFromArray(x), wi, wo, q)[c];
+          x[k] -= 2 * h;
+          const double down =
+              ThreadValue(ThreadParamsFromArray(x), wi, wo, q)[c];
+          const double fd = (up - down) / (2 * h);
+          EXPECT_NEAR(fj[c].v[k], fd, 1e-5 * (std::abs(fd) + std::abs(f[c])))
+              << "parameter " << ThreadParamNames()[k] << " channel " << c;
+        }
+      }
+    }
+  }
+}
+
+TEST(ClothRho, JetAndDoubleAgreeAndGradientMatchesFiniteDifferences) {
+  using J = ceres::Jet<double, 1>;
+  for (const char* name :
+       {"polyester_satin_charmeuse", "silk_shot", "linen_plain"}) {
+    const ClothParams cloth = Preset(name);
+    const int n = ClothArraySize(cloth);
+    std::vector<double> x(n);
+    ToArray(cloth, x.data());
+    for (const auto& [wi, wo] : {std::pair{Dir(35, 20), Dir(50, 190)},
+                                 std::pair{Dir(60, 95), Dir(20, -80)}}) {
+      const glm::dvec3 rho = ClothRho(cloth, wi, wo);
+      for (int k = 0; k < n; ++k) {
+        std::vector<J> xj(n);
+        for (int i = 0; i < n; ++i) xj[i] = J(x[i]);
+        xj[k].v[0] = 1.0;
+        const Vec3<J> rj = ClothRho(ClothParamsFromArray(xj.data(), cloth),
+                                    Cast<J>(wi), Cast<J>(wo));
+        std::vector<double> xp = x, xm = x;
+        const double h = 1e-6 * std::max(1.0, std::abs(x[k]));
+        xp[k] += h;
+        xm[k] -= h;
+        const glm::dvec3 up =
+            ClothRho(ClothParamsFromArray(xp.data(), cloth), wi, wo);
+        const glm::dvec3 down =
+            ClothRho(ClothParamsFromArray(xm.data(), cloth), wi, wo);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(rj[c].a, rho[c], 1e-12 * rho[c]);
+          const double fd = (up[c] - down[c]) / (2 * h);
+          EXPECT_NEAR(rj[c].v[0], fd, 1e-5 * (std::abs(fd) + rho[c]))
+              << name << " entry " << k << " channel " << c;
+        }
+      }
+    }
+  }
+}
+
+// A dense grid including exactly grazing and exactly normal directions, and
+// directions along the thread tangents (zero-length projections).
+std::vector<glm::dvec3> GridDirections() {
+  std::vector<glm::dvec3> out;
+  for (double theta : {0.0, 1e-9, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0,
+                       89.999, 90.0}) {
+    for (double phi = 0.0; phi < 360.0; phi += 15.0) {
+      out.push_back(Dir(theta, phi));
+      if (theta == 0.0) break;
+    }
+  }
+  return out;
+}
+
+TEST(ClothRho, FiniteAndNonNegativeOverDenseGridIncludingGrazing) {
+  const std::vector<glm::dvec3> dirs = GridDirections();
+  for (const std::string& name : PresetNames()) {
+    const ClothParams cloth = Preset(name);
+    for (const glm::dvec3& wi : dirs) {
+      for (const glm::dvec3& wo : dirs) {
+        for (Quantity q : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
+          const glm::dvec3 v = ClothValue(cloth, wi, wo, q);
+          for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(v[c]) && v[c] >= 0.0)
+                << name << " wi " << wi.x << "," << wi.y << "," << wi.z
+                << " wo " << wo.x << "," << wo.y << "," << wo.z << " -> "
+                << v[c];
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(ClothRho, GradientFiniteAtGrazingAndAlongTangents) {
+  using J = ceres::Jet<double, 1>;
+  const ClothParams cloth = Preset("velvet");  // tangents at -90 deg: +-z
+  const int n = ClothArraySize(cloth);
+  std::vector<double> x(n);
+  ToArray(cloth, x.data());
+  for (const glm::dvec3& wi : {Dir(0, 0), Dir(90, 0), Dir(89.999, 45)}) {
+    for (const glm::dvec3& wo : {Dir(0, 0), Dir(90, 90), Dir(45, 180)}) {
+      for (int k = 0; k < n; ++k) {
+        std::vector<J> xj(x.begin(), x.end());
+        xj[k].v[0] = 1.0;
+        const Vec3<J> r = ClothValue(ClothParamsFromArray(xj.data(), cloth),
+                                     Cast<J>(wi), Cast<J>(wo), Quantity::kBrdf);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_TRUE(std::isfinite(r[c].a) && std::isfinite(r[c].v[0]));
+        }
+      }
+    }
+  }
+}
+
+TEST(ThreadBsdf, FiniteAndNonNegativeOverTheWholeSphere) {
+  ThreadParams p;
+  std::vector<glm::dvec3> dirs = GridDirections();
+  const size_t upper = dirs.size();
+  for (size_t i = 0; i < upper; ++i) dirs.push_back(-dirs[i]);
+  dirs.push_back({1, 0, 0});  // along the tangent: no azimuth
+  dirs.push_back({-1, 0, 0});
+  for (const glm::dvec3& wi : dirs) {
+    for (const glm::dvec3& wo : dirs) {
+      const glm::dvec3 f = ThreadBsdfLocal(p, wi, wo);
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(f[c]) && f[c] >= 0.0);
+      }
+    }
+  }
+  // A direction along the tangent contributes nothing (SPEC §3.1).
+  EXPECT_EQ(ThreadBsdfLocal(p, glm::dvec3(1, 0, 0), Dir(30, 0)).x, 0.0);
+}
+
+TEST(ThreadBsdf, SpecularConeOfTheTangent) {
+  // For a thread along +x the surface reflection peaks where
+  // theta_o = -theta_i, i.e. wo on the cone around the tangent mirroring wi.
+  // A narrow lobe keeps the 1/cos^2(theta_d) and Fresnel factors from
+  // shifting the peak by more than a few hundredths of a degree.
+  ThreadParams p;
+  p.gamma_s_deg = 0.5;
+  p.kd = 0.0;
+  p.albedo = glm::dvec3(0.0);
+  const glm::dvec3 wi = Dir(50, 0);  // 40 deg from the tangent
+  double best = -1.0, best_theta = 0.0;
+  for (double theta_o = -89.5; theta_o <= 89.5; theta_o += 0.05) {
+    // Viewer in the plane y = 0 on the far side of the normal.
+    const double t = Radians(theta_o);
+    const glm::dvec3 wo(std::sin(t), 0.0, std::cos(t));
+    const double f = ThreadBsdfLocal(p, wi, wo).x;
+    if (f > best) best = f, best_theta = theta_o;
+  }
+  EXPECT_NEAR(best_theta, -50.0, 0.11);
+}
+
+// The front of the satin has flat tangent segments at +-32 deg (and +-18,
+// 0) along u: with the light at normal incidence in the xz plane, each tilt
+// psi mirrors the light to theta_o = 2 psi, so the off-specular highlight
+// pair sits at +-64 deg (the +-18 pair at +-36 deg), with dips between.
+TEST(ClothRho, SatinShowsItsOffSpecularHighlightPair) {
+  const ClothParams satin = Preset("polyester_satin_charmeuse");
+  const glm::dvec3 wi(0, 0, 1);
+  std::vector<double> angle, value;
+  for (double t = -89.0; t <= 89.0; t += 0.5) {
+    angle.push_back(t);
+    value.push_back(ClothRho(satin, wi, Dir(std::abs(t), t < 0 ? 180 : 0)).y);
+  }
+  std::vector<double> maxima;
+  for (size_t i = 1; i + 1 < value.size(); ++i) {
+    if (value[i] > value[i - 1] && value[i] >= value[i + 1]) {
+      maxima.push_back(angle[i]);
+    }
+  }
+  auto has_peak_near = [&](double where) {
+    for (double m : maxima) {
+      if (std::abs(m - where) <= 2.0) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(has_peak_near(64.0));
+  EXPECT_TRUE(has_peak_near(-64.0));
+  EXPECT_TRUE(has_peak_near(36.0));
+  EXPECT_TRUE(has_peak_near(-36.0));
+  auto at = [&](double t) {
+    return ClothRho(satin, wi, Dir(std::abs(t), t < 0 ? 180 : 0)).y;
+  };
+  EXPECT_GT(at(64.0), 3.0 * at(50.0));
+  EXPECT_NEAR(at(64.0), at(-64.0), 1e-12);
+  // Along v the flat threads show no such pair: no peak near +-64 deg.
+  const double along_v = ClothRho(satin, wi, Dir(64.0, 90.0)).y;
+  EXPECT_LT(along_v, 0.5 * at(64.0));
+}
+
+TEST(ClothRho, ReflectionOnly) {
+  const ClothParams c = Preset("linen_plain");
+  EXPECT_EQ(ClothRho(c, Dir(30, 0), -Dir(30, 0)).x, 0.0);
+  EXPECT_EQ(ClothRho(c, -Dir(30, 0), Dir(30, 0)).x, 0.0);
+  EXPECT_GT(ClothRho(c, Dir(30, 0), Dir(30, 180)).x, 0.0);
+}
+
+TEST(ClothRho, NoCoverageGivesZeroNotNaN) {
+  ClothParams c = Preset("linen_plain");
+  for (ClothThread& th : c.threads) th.coverage = 0.0;
+  const glm::dvec3 rho = ClothRho(c, Dir(30, 0), Dir(40, 100));
+  EXPECT_EQ(rho.x, 0.0);
+}
+
+TEST(ThreadParams, ArrayRoundTrip) {
+  ThreadParams p;
+  p.eta = 1.3;
+  p.kd = 0.4;
+  p.gamma_s_deg = 7;
+  p.gamma_v_deg = 11;
+  p.albedo = {0.1, 0.2, 0.3};
+  double x[ThreadParams::kSize];
+  ToArray(p, x);
+  const ThreadParams q = ThreadParamsFromArray(x);
+  EXPECT_EQ(q.eta, p.eta);
+  EXPECT_EQ(q.kd, p.kd);
+  EXPECT_EQ(q.gamma_s_deg, p.gamma_s_deg);
+  EXPECT_EQ(q.gamma_v_deg, p.gamma_v_deg);
+  EXPECT_EQ(q.albedo, p.albedo);
+}
+
+TEST(ClothParams, ArrayRoundTrip) {
+  const ClothParams c = Preset("velvet");
+  std::vector<double> x(ClothArraySize(c));
+  ToArray(c, x.data());
+  const ClothParams d = ClothParamsFromArray(x.data(), c);
+  ASSERT_EQ(d.threads.size(), c.threads.size());
+  for (size_t j = 0; j < c.threads.size(); ++j) {
+    EXPECT_EQ(d.threads[j].coverage, c.threads[j].coverage);
+    EXPECT_EQ(d.threads[j].offsets_deg, c.threads[j].offsets_deg);
+    EXPECT_EQ(d.threads[j].params.albedo, c.threads[j].params.albedo);
+    EXPECT_EQ(d.threads[j].direction, c.threads[j].direction);
+  }
+}
+
+TEST(Validation, NamesTheField) {
+  ThreadParams p;
+  p.gamma_s_deg = -1;
+  EXPECT_NE(ValidateThreadParams(p).find("gamma_s_deg"), std::string::npos);
+  p = ThreadParams();
+  p.eta = 1.0;
+  EXPECT_NE(ValidateThreadParams(p).find("eta"), std::string::npos);
+  ClothParams c = Preset("linen_plain");
+  c.threads[0].coverage = 0.8;
+  EXPECT_NE(ValidateClothParams(c).find("sum"), std::string::npos);
+  c = Preset("linen_plain");
+  c.threads[1].params.kd = 2;
+  EXPECT_NE(ValidateClothParams(c).find("threads[1].kd"), std::string::npos);
+  for (const std::string& name : PresetNames()) {
+    EXPECT_EQ(ValidateClothParams(Preset(name)), "") << name;
+  }
+}
+
+TEST(TangentCurve, SamplesEquidistantAlongLength) {
+  TangentCurve c;
+  c.offsets_deg = {-30, 30};
+  c.lengths = {1};
+  c.samples = 4;  // at 1/8, 3/8, 5/8, 7/8 of the length
+  const std::vector<double> s = SampleTangentCurve(c);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_NEAR(s[0], -22.5, 1e-12);
+  EXPECT_NEAR(s[1], -7.5, 1e-12);
+  EXPECT_NEAR(s[2], 7.5, 1e-12);
+  EXPECT_NEAR(s[3], 22.5, 1e-12);
+}
+
+TEST(TangentCurve, ZeroLengthSegmentIsAJump) {
+  TangentCurve c;  // velvet's v thread: -90..-55, jump, 55..90
+  c.offsets_deg = {-90, -55, 55, 90};
+  c.lengths = {0.5, 0, 0.5};
+  c.samples = 2;  // at 0.25 and 0.75
+  const std::vector<double> s = SampleTangentCurve(c);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_NEAR(s[0], -72.5, 1e-12);
+  EXPECT_NEAR(s[1], 72.5, 1e-12);
+  EXPECT_EQ(ValidateTangentCurve(c), "");
+  c.lengths = {1};
+  EXPECT_NE(ValidateTangentCurve(c).find("curve_lengths"), std::string::npos);
+}
+
+TEST(TangentCurve, DenseSamplingFollowsTheFlatSegments) {
+  // Sampling the satin curve densely puts most samples on the flat parts.
+  ClothParams satin = Preset("polyester_satin_charmeuse");
+  TangentCurve c = satin.threads[0].curve;
+  c.samples = 1000;
+  ASSERT_EQ(ValidateTangentCurve(c), "");
+  const std::vector<double> s = SampleTangentCurve(c);
+  int at_32 = 0;
+  for (double o : s) at_32 += std::abs(std::abs(o) - 32.0) < 1e-9;
+  // The two flat +-32 segments are 2 * 1.33 of the total length 9.98.
+  EXPECT_NEAR(at_32 / 1000.0, 2.66 / 9.98, 0.002);
+}
+
+}  // namespace
+}  // namespace clothfit
