@@ -15,11 +15,13 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name) {
   return *q;
 }
 
-ParamFile LoadModelOption(const CommandArgs& args) {
-  if (args.Has("params") == args.Has("preset")) {
-    args.Fail("give exactly one of --params FILE and --preset NAME");
+ParamFile LoadModelOption(const CommandArgs& args,
+                          const std::string& file_option) {
+  if (args.Has(file_option) == args.Has("preset")) {
+    args.Fail("give exactly one of --" + file_option +
+              " FILE and --preset NAME");
   }
-  if (args.Has("params")) return ReadParamFile(args.Get("params"));
+  if (args.Has(file_option)) return ReadParamFile(args.Get(file_option));
   ClothParams cloth;
   if (!GetPreset(args.Get("preset"), &cloth)) {
     args.Fail("unknown preset '" + args.Get("preset") +

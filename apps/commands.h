@@ -12,6 +12,7 @@
 namespace clothfit {
 
 int RunEval(int argc, char** argv);
+int RunFit(int argc, char** argv);
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);
@@ -20,7 +21,9 @@ int RunSynth(int argc, char** argv);
 // transmittance).
 Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
 
-// The parameters named by --params FILE or --preset NAME (exactly one).
-ParamFile LoadModelOption(const CommandArgs& args);
+// The parameters named by --FILE_OPTION FILE (e.g. --params) or --preset
+// NAME; exactly one of the two must be given.
+ParamFile LoadModelOption(const CommandArgs& args,
+                          const std::string& file_option = "params");
 
 }  // namespace clothfit

@@ -17,6 +17,7 @@ struct Command {
 
 const Command kCommands[] = {
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
+    {"fit", clothfit::RunFit, "fit a model to a measurement table"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},

@@ -27,14 +27,19 @@ Vec3<T> ThreadValue(const ThreadParamsT<T>& p, const Vec3<T>& wi,
   return q == Quantity::kCosineWeighted ? f * abs(wi.z) : f;
 }
 
+// rho = f wi.z as quantity q: rho itself, or f = rho / wi.z (with wi.z
+// floored at kMinCosIncidence so that f stays finite at grazing incidence).
+template <typename T, typename G>
+Vec3<T> FromCosineWeighted(const Vec3<T>& rho, const G& wi_z, Quantity q) {
+  if (q == Quantity::kCosineWeighted) return rho;
+  return rho / T(Max(wi_z, G(kMinCosIncidence)));
+}
+
 // A cloth patch in the surface frame; reflection only.
 template <typename T>
 Vec3<T> ClothValue(const ClothParamsT<T>& c, const Vec3<T>& wi,
                    const Vec3<T>& wo, Quantity q) {
-  const Vec3<T> rho = ClothRho(c, wi, wo);
-  return q == Quantity::kCosineWeighted
-             ? rho
-             : rho / Max(wi.z, T(kMinCosIncidence));
+  return FromCosineWeighted(ClothRho(c, wi, wo), wi.z, q);
 }
 
 // Double-precision evaluation of any parameter set. Requires

@@ -199,45 +199,96 @@ T MaskingTerm(const T& cos_i, const T& cos_o, const T& angle_d) {
   return (T(1.0) - u) * cos_i * cos_o + u * Min(cos_i, cos_o);
 }
 
+// One tangent sample of a thread seen from (wi, wo): its geometry and the
+// factors that depend on geometry alone.
+template <typename G>
+struct TangentSample {
+  bool valid = false;  // both projections defined (else it contributes 0)
+  ThreadGeometry<G> geometry;
+  G weight = G(0.0);    // M P cos(theta_i): multiplies f_s in S_j (eq. 11)
+  G reweight = G(0.0);  // P: the sample's term of W_j (eq. 12)
+};
+
+// The sample at tangent offset `offset_deg` of a thread along `direction`.
+template <typename G>
+TangentSample<G> ComputeTangentSample(ThreadDirection direction,
+                                      const G& offset_deg, const Vec3<G>& wi,
+                                      const Vec3<G>& wo) {
+  using std::cos;
+  using std::sin;
+  const Vec3<G> d = direction == ThreadDirection::kU
+                        ? Vec3<G>(G(1.0), G(0.0), G(0.0))
+                        : Vec3<G>(G(0.0), G(1.0), G(0.0));
+  const Vec3<G> z(G(0.0), G(0.0), G(1.0));
+  const G psi = Radians(offset_deg);
+  const G c = cos(psi), s = sin(psi);
+  TangentSample<G> out;
+  out.geometry = ComputeThreadGeometry<G>(d * c + z * s, z * c - d * s, wi, wo);
+  const ThreadGeometry<G>& g = out.geometry;
+  if (!g.valid || !g.psi_valid) return out;  // SPEC: contributes nothing
+  out.valid = true;
+  out.reweight = MaskingTerm(g.cos_psi_i, g.cos_psi_o, g.psi_d);
+  if (out.reweight > G(0.0)) {
+    out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) *
+                 out.reweight * g.cos_theta_i;
+  }
+  return out;
+}
+
+// rho from the samples of every thread (eq. 11-13). `samples.Count(j)` and
+// `samples.Get(j, k)` give thread j's samples (a TangentSample<G>); cloth
+// gives the coverages and scattering parameters (its offsets are not read).
+// ClothRho computes the samples on the fly; a fit with fixed directions and
+// offsets passes samples it computed once.
+template <typename T, typename G, typename Samples>
+Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
+                            const Samples& samples, const G& wi_z) {
+  const Vec3<T> zero(T(0.0));
+  Vec3<T> sum = zero;
+  T q(0.0);
+  T coverage_sum(0.0);
+  for (size_t j = 0; j < cloth.threads.size(); ++j) {
+    const ClothThreadT<T>& th = cloth.threads[j];
+    coverage_sum += th.coverage;
+    const int count = samples.Count(j);
+    if (count == 0) continue;
+    Vec3<T> s = zero;
+    G w(0.0);
+    for (int k = 0; k < count; ++k) {
+      const TangentSample<G>& sample = samples.Get(j, k);
+      if (!sample.valid) continue;
+      w += sample.reweight;
+      if (sample.weight > G(0.0)) {
+        s += ThreadBsdf(sample.geometry, th.params) * T(sample.weight);
+      }
+    }
+    const T share = th.coverage * T(1.0 / count);
+    sum += s * share;
+    q += share * T(w);
+  }
+  q += (T(1.0) - coverage_sum) * T(wi_z);
+  if (!(q > T(0.0))) return zero;
+  return sum / q;
+}
+
 // Cosine-weighted BRDF rho(wi, wo) = f |wi.z| of a cloth patch, per channel.
 template <typename T>
 Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
                  const Vec3<T>& wo) {
-  using std::cos;
-  using std::sin;
-  const Vec3<T> zero(T(0.0));
-  if (!(wi.z > T(0.0) && wo.z > T(0.0))) return zero;
-  Vec3<T> sum = zero;
-  T q(0.0);
-  T coverage_sum(0.0);
-  for (const ClothThreadT<T>& th : cloth.threads) {
-    const Vec3<T> d = th.direction == ThreadDirection::kU
-                          ? Vec3<T>(T(1.0), T(0.0), T(0.0))
-                          : Vec3<T>(T(0.0), T(1.0), T(0.0));
-    const Vec3<T> z(T(0.0), T(0.0), T(1.0));
-    coverage_sum += th.coverage;
-    if (th.offsets_deg.empty()) continue;
-    Vec3<T> s = zero;
-    T w(0.0);
-    for (const T& offset_deg : th.offsets_deg) {
-      const T psi = Radians(offset_deg);
-      const T c = cos(psi), sn = sin(psi);
-      const Vec3<T> t = d * c + z * sn;
-      const Vec3<T> n = z * c - d * sn;
-      const ThreadGeometry<T> g = ComputeThreadGeometry(t, n, wi, wo);
-      if (!g.valid || !g.psi_valid) continue;  // SPEC: contributes nothing
-      const T p = MaskingTerm(g.cos_psi_i, g.cos_psi_o, g.psi_d);
-      w += p;
-      const T mp = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * p;
-      if (mp > T(0.0)) s += ThreadBsdf(g, th.params) * (mp * g.cos_theta_i);
+  if (!(wi.z > T(0.0) && wo.z > T(0.0))) return Vec3<T>(T(0.0));
+  struct OnTheFly {
+    const ClothParamsT<T>& cloth;
+    const Vec3<T>& wi;
+    const Vec3<T>& wo;
+    int Count(size_t j) const {
+      return static_cast<int>(cloth.threads[j].offsets_deg.size());
     }
-    const T inv_count = T(1.0 / static_cast<double>(th.offsets_deg.size()));
-    sum += s * (th.coverage * inv_count);
-    q += th.coverage * w * inv_count;
-  }
-  q += (T(1.0) - coverage_sum) * wi.z;
-  if (!(q > T(0.0))) return zero;
-  return sum / q;
+    TangentSample<T> Get(size_t j, int k) const {
+      const ClothThreadT<T>& th = cloth.threads[j];
+      return ComputeTangentSample(th.direction, th.offsets_deg[k], wi, wo);
+    }
+  };
+  return ClothRhoFromSamples(cloth, OnTheFly{cloth, wi, wo}, wi.z);
 }
 
 // Smallest wi.z used to turn rho into the BRDF f = rho / wi.z, so that f

@@ -217,20 +217,25 @@ ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
   return g;
 }
 
-// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4).
-template <typename T>
-Vec3<T> ThreadBsdf(const ThreadGeometry<T>& g, const ThreadParamsT<T>& p) {
+// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4). The
+// geometry's scalar type G may differ from the parameters' T: a fit with
+// fixed directions computes the geometry once in double and evaluates only
+// the parameter-dependent part with Jets.
+template <typename T, typename G>
+Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
+  using std::sqrt;
   const T gamma_s = Radians(p.gamma_s_deg);
   const T gamma_v = Radians(p.gamma_v_deg);
-  using std::sqrt;
-  const T cos_half_phi_d = g.cos_half_phi_d;
-  const T fr = FresnelDielectric(sqrt(g.cos2_theta_d) * cos_half_phi_d, p.eta);
-  const T f_rs = fr * cos_half_phi_d * NormalizedGaussian(gamma_s, g.theta_h);
+  const T theta_h(g.theta_h);
+  const G cos_half_phi_d = g.cos_half_phi_d;
+  const T fr =
+      FresnelDielectric(T(sqrt(g.cos2_theta_d) * cos_half_phi_d), p.eta);
+  const T f_rs = fr * T(cos_half_phi_d) * NormalizedGaussian(gamma_s, theta_h);
   const T volume = Sqr(T(1.0) - fr) *
-                   ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, g.theta_h) +
+                   ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, theta_h) +
                     p.kd) /
-                   (g.cos_theta_i + g.cos_theta_o);
-  const T inv_cos2 = T(1.0) / g.cos2_theta_d;
+                   T(g.cos_theta_i + g.cos_theta_o);
+  const T inv_cos2 = T(1.0 / g.cos2_theta_d);
   return Vec3<T>(f_rs + volume * p.albedo.x, f_rs + volume * p.albedo.y,
                  f_rs + volume * p.albedo.z) *
          inv_cos2;

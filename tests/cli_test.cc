@@ -1,1 +1,549 @@
+// Runs the clothfit executable (SPEC §5) and checks its files, output and
+// exit status against the library.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <glm/geometric.hpp>
+#include <initializer_list>
+#include <iterator>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/params_json.h"
+#include "io/table.h"
+#include "models/evaluate.h"
+#include "models/presets.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A fresh, empty directory for one test under CLOTHFIT_TEST_TMP.
+fs::path TestDir() {
+  const testing::TestInfo* info =
+      testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir =
+      fs::path(CLOTHFIT_TEST_TMP) / (std::string("cli_test_") + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string ReadText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in),
+                     std::istreambuf_iterator<char>());
+}
+
+void WriteText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+// Single-quotes a word for /bin/sh.
+std::string Quote(const std::string& word) {
+  std::string out = "'";
+  for (char c : word) {
+    if (c == '\'') {
+      out += "'\\''";
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
+}
+
+struct RunResult {
+  int status = -1;  // exit status, -1 if the process did not exit normally
+  std::string out;
+  std::string err;
+};
+
+// Runs `clothfit ARGS...` with stdout and stderr captured in files of
+// `dir` (named so that they do not clash with the files a test checks).
+RunResult RunClothfit(const fs::path& dir,
+                      const std::vector<std::string>& args) {
+  std::string command = Quote(CLOTHFIT_BINARY);
+  for (const std::string& arg : args) command += " " + Quote(arg);
+  const fs::path out_path = dir / "_stdout.txt";
+  const fs::path err_path = dir / "_stderr.txt";
+  command += " </dev/null >" + Quote(out_path.string()) + " 2>" +
+             Quote(err_path.string());
+  const int raw = std::system(command.c_str());
+  RunResult result;
+  if (raw != -1 && WIFEXITED(raw)) result.status = WEXITSTATUS(raw);
+  result.out = ReadText(out_path);
+  result.err = ReadText(err_path);
+  fs::remove(out_path);
+  fs::remove(err_path);
+  return result;
+}
+
+std::string Describe(const RunResult& r) {
+  return "exit " + std::to_string(r.status) + "\nstdout:\n" + r.out +
+         "\nstderr:\n" + r.err;
+}
+
+// The names of the regular files in `dir`.
+std::set<std::string> FilesIn(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+size_t Count(const std::string& text, const std::string& piece) {
+  size_t n = 0;
+  for (size_t pos = text.find(piece); pos != std::string::npos;
+       pos = text.find(piece, pos + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+ClothParams Preset(const std::string& name) {
+  ClothParams c;
+  EXPECT_TRUE(GetPreset(name, &c)) << name;
+  return c;
+}
+
+// |actual - expected| <= tolerance * |expected| per channel (so an expected
+// 0 must be matched exactly).
+void ExpectRelativelyNear(const glm::dvec3& actual, const glm::dvec3& expected,
+                          double tolerance, const std::string& where) {
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_LE(std::abs(actual[c] - expected[c]),
+              tolerance * std::abs(expected[c]))
+        << where << " channel " << c << ": " << actual[c] << " vs "
+        << expected[c];
+  }
+}
+
+// Direction pairs for eval: a grid over both hemispheres (wo also below the
+// surface when `lower_wo`), mirror configurations that hit the specular
+// peaks, and grazing and exactly horizontal directions.
+MeasurementTable DirectionTable(bool lower_wo) {
+  MeasurementTable table;
+  table.direction_columns = DirectionColumns::kVectors;
+  table.channels = 3;
+  auto add = [&](const glm::dvec3& wi, const glm::dvec3& wo) {
+    TableRow row;
+    row.wi = glm::normalize(wi);
+    row.wo = glm::normalize(wo);
+    table.rows.push_back(row);
+  };
+  const double deg = kPi / 180.0;
+  for (double theta_i : {0.0, 20.0, 45.0, 70.0, 89.9}) {
+    for (double phi_i : {0.0, 60.0, 135.0}) {
+      const glm::dvec3 wi = DirectionFromAngles(theta_i * deg, phi_i * deg);
+      // Mirror direction and a nearby off-specular one.
+      add(wi, glm::dvec3(-wi.x, -wi.y, wi.z));
+      add(wi, DirectionFromAngles((theta_i * 0.5 + 10.0) * deg,
+                                  (phi_i + 170.0) * deg));
+      add(wi, DirectionFromAngles(33.0 * deg, (phi_i + 40.0) * deg));
+    }
+  }
+  // Grazing and horizontal.
+  add({1.0, 0.0, 0.0}, {-1.0, 0.0, 0.0});
+  add({1.0, 0.0, 0.0}, {0.0, 0.6, 0.8});
+  add({0.0, 0.6, 0.8}, {0.0, -1.0, 0.0});
+  add(DirectionFromAngles(89.99 * deg, 10.0 * deg),
+      DirectionFromAngles(89.99 * deg, 190.0 * deg));
+  add({0.0, 0.0, 1.0}, {0.0, 0.0, 1.0});
+  add({0.3, -0.2, 0.9}, {-0.31, 0.19, 0.9});
+  if (lower_wo) {
+    add({0.3, 0.1, 0.9}, {0.2, 0.3, -0.9});
+    add({0.0, 0.5, 0.8}, {0.1, -0.4, -0.8});
+    add({0.7, 0.0, 0.7}, {0.7, 0.0, -0.7});
+    add({0.2, 0.2, 0.95}, {0.0, 0.0, -1.0});
+  } else {
+    add({0.3, 0.1, 0.9}, {0.2, 0.3, 0.9});
+    add({0.0, 0.5, 0.8}, {0.1, -0.4, 0.8});
+    add({0.7, 0.0, 0.7}, {0.7, 0.0, 0.7});
+    add({0.2, 0.2, 0.95}, {0.0, 0.0, 1.0});
+  }
+  return table;
+}
+
+// Runs eval for `params_path` at the directions of `table` for both
+// quantities and compares every value with Evaluate(expected, ...).
+void CheckEval(const fs::path& dir, const fs::path& params_path,
+               const MeasurementTable& table, const ModelParams& expected) {
+  const fs::path dirs_path = dir / "D.csv";
+  WriteTable(table, dirs_path.string());
+  ReadTableOptions read_options;
+  read_options.values_optional = true;
+  // The directions as eval reads them (normalised on read).
+  const MeasurementTable dirs =
+      ReadTable(dirs_path.string(), read_options).table;
+  ASSERT_EQ(dirs.rows.size(), table.rows.size());
+
+  for (Quantity quantity : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
+    const std::string name = QuantityName(quantity);
+    const fs::path out_path = dir / ("O_" + name + ".csv");
+    const RunResult r = RunClothfit(
+        dir, {"eval", "--params", params_path.string(), "--dirs",
+              dirs_path.string(), "--out", out_path.string(), "--quantity",
+              name});
+    ASSERT_EQ(r.status, 0) << Describe(r);
+    EXPECT_EQ(r.err, "");
+    const MeasurementTable out = ReadTable(out_path.string()).table;
+    EXPECT_EQ(out.quantity, quantity);
+    EXPECT_EQ(out.channels, 3);
+    ASSERT_EQ(out.rows.size(), dirs.rows.size());
+    int nonzero = 0;
+    for (size_t i = 0; i < out.rows.size(); ++i) {
+      const std::string where = name + " row " + std::to_string(i);
+      const TableRow& row = out.rows[i];
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(row.wi[c], dirs.rows[i].wi[c], 1e-15) << where;
+        EXPECT_NEAR(row.wo[c], dirs.rows[i].wo[c], 1e-15) << where;
+      }
+      const glm::dvec3 want =
+          Evaluate(expected, dirs.rows[i].wi, dirs.rows[i].wo, quantity);
+      ExpectRelativelyNear(row.value, want, 1e-12, where);
+      if (want.x != 0.0) ++nonzero;
+    }
+    // Most rows must carry a real value for the comparison to mean much.
+    EXPECT_GT(nonzero, static_cast<int>(out.rows.size()) / 2) << name;
+  }
+}
+
+TEST(CliTest, PresetsListsSixNames) {
+  const fs::path dir = TestDir();
+  const RunResult r = RunClothfit(dir, {"presets"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  std::string expected;
+  for (const char* name :
+       {"linen_plain", "silk_crepe_de_chine", "polyester_satin_charmeuse",
+        "polyester_satin_charmeuse_back", "silk_shot", "velvet"}) {
+    expected += std::string(name) + "\n";
+  }
+  EXPECT_EQ(r.out, expected);
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(CliTest, PresetPrintsParameterFileOfLibraryPreset) {
+  const fs::path dir = TestDir();
+  const RunResult r = RunClothfit(dir, {"preset", "linen_plain"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_EQ(r.err, "");
+  const ParamFile file = ParseParamFile(r.out, "stdout");
+  const ClothParams expected = Preset("linen_plain");
+  EXPECT_EQ(r.out, FormatParamFile(ParamFile{expected, ""}));
+  ASSERT_TRUE(std::holds_alternative<ClothParams>(file.params));
+  const ClothParams& got = std::get<ClothParams>(file.params);
+  ASSERT_EQ(got.threads.size(), expected.threads.size());
+  for (size_t j = 0; j < got.threads.size(); ++j) {
+    const ClothThread& a = got.threads[j];
+    const ClothThread& b = expected.threads[j];
+    EXPECT_EQ(a.direction, b.direction) << j;
+    EXPECT_EQ(a.coverage, b.coverage) << j;
+    EXPECT_EQ(a.offsets_deg, b.offsets_deg) << j;
+    EXPECT_EQ(a.params.eta, b.params.eta) << j;
+    EXPECT_EQ(a.params.kd, b.params.kd) << j;
+    EXPECT_EQ(a.params.gamma_s_deg, b.params.gamma_s_deg) << j;
+    EXPECT_EQ(a.params.gamma_v_deg, b.params.gamma_v_deg) << j;
+    EXPECT_EQ(a.params.albedo, b.params.albedo) << j;
+  }
+}
+
+TEST(CliTest, PresetOutWritesSameFileAsStdout) {
+  const fs::path dir = TestDir();
+  const fs::path path = dir / "P.json";
+  const RunResult r =
+      RunClothfit(dir, {"preset", "velvet", "--out", path.string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(ReadText(path), FormatParamFile(ParamFile{Preset("velvet"), ""}));
+}
+
+TEST(CliTest, EvalPresetMatchesLibrary) {
+  const fs::path dir = TestDir();
+  const fs::path params_path = dir / "P.json";
+  const RunResult r = RunClothfit(
+      dir, {"preset", "silk_shot", "--out", params_path.string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable table = DirectionTable(/*lower_wo=*/false);
+  ASSERT_GE(table.rows.size(), 50u);
+  CheckEval(dir, params_path, table, Preset("silk_shot"));
+}
+
+TEST(CliTest, EvalThreadFileMatchesLibrary) {
+  const fs::path dir = TestDir();
+  ThreadParams p;
+  p.eta = 1.539;
+  p.kd = 0.1;
+  p.gamma_s_deg = 2.5;
+  p.gamma_v_deg = 5.0;
+  p.albedo = glm::dvec3(0.035, 0.01295, 0.0105);
+  const fs::path params_path = dir / "thread.json";
+  WriteParamFile(ParamFile{p, ""}, params_path.string());
+  // Thread tables: wo may lie below the thread's local normal plane.
+  CheckEval(dir, params_path, DirectionTable(/*lower_wo=*/true), p);
+}
+
+TEST(CliTest, SynthWithoutNoiseMatchesLibrary) {
+  const fs::path dir = TestDir();
+  const fs::path path = dir / "T.csv";
+  const RunResult r =
+      RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows", "300",
+                        "--noise", "0", "--seed", "3", "--out", path.string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable table = ReadTable(path.string()).table;
+  ASSERT_EQ(table.rows.size(), 300u);
+  EXPECT_EQ(table.quantity, Quantity::kBrdf);
+  EXPECT_EQ(table.channels, 3);
+  EXPECT_FALSE(table.has_sigma);
+  const ClothParams preset = Preset("silk_shot");
+  int nonzero = 0;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    EXPECT_GE(row.wi.z, 0.0) << i;
+    EXPECT_GE(row.wo.z, 0.0) << i;
+    ExpectRelativelyNear(row.value,
+                         Evaluate(preset, row.wi, row.wo, Quantity::kBrdf),
+                         1e-9, "row " + std::to_string(i));
+    if (row.value.y != 0.0) ++nonzero;
+  }
+  EXPECT_GT(nonzero, 250);
+}
+
+TEST(CliTest, SynthIsDeterministic) {
+  const fs::path dir = TestDir();
+  const std::vector<std::string> args = {"synth", "--preset", "silk_shot",
+                                         "--rows", "300", "--noise", "0",
+                                         "--seed", "3", "--out"};
+  std::vector<std::string> first = args, second = args, other = args;
+  first.push_back((dir / "T1.csv").string());
+  second.push_back((dir / "T2.csv").string());
+  other.push_back((dir / "T3.csv").string());
+  other[8] = "4";  // a different seed
+  ASSERT_EQ(RunClothfit(dir, first).status, 0);
+  ASSERT_EQ(RunClothfit(dir, second).status, 0);
+  ASSERT_EQ(RunClothfit(dir, other).status, 0);
+  const std::string a = ReadText(dir / "T1.csv");
+  EXPECT_FALSE(a.empty());
+  EXPECT_EQ(a, ReadText(dir / "T2.csv"));
+  EXPECT_NE(a, ReadText(dir / "T3.csv"));
+}
+
+TEST(CliTest, SynthNoiseIsAboutTheRequestedLevel) {
+  const fs::path dir = TestDir();
+  const fs::path clean_path = dir / "clean.csv";
+  const fs::path noisy_path = dir / "noisy.csv";
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows",
+                              "300", "--noise", "0", "--seed", "3", "--out",
+                              clean_path.string()})
+                .status,
+            0);
+  const RunResult r =
+      RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows", "300",
+                        "--noise", "0.02", "--seed", "3", "--out",
+                        noisy_path.string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable clean = ReadTable(clean_path.string()).table;
+  const MeasurementTable noisy = ReadTable(noisy_path.string()).table;
+  EXPECT_TRUE(noisy.has_sigma);
+  EXPECT_NE(ReadText(noisy_path).find("sigma_r,sigma_g,sigma_b"),
+            std::string::npos);
+  ASSERT_EQ(noisy.rows.size(), 300u);
+  ASSERT_EQ(clean.rows.size(), noisy.rows.size());
+  double sum2 = 0.0;
+  int count = 0;
+  for (size_t i = 0; i < noisy.rows.size(); ++i) {
+    const TableRow& a = clean.rows[i];
+    const TableRow& b = noisy.rows[i];
+    // The same seed draws the same directions.
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(a.wi[c], b.wi[c]) << i;
+      ASSERT_EQ(a.wo[c], b.wo[c]) << i;
+    }
+    for (int c = 0; c < 3; ++c) {
+      if (a.value[c] == 0.0) continue;
+      const double deviation = b.value[c] / a.value[c] - 1.0;
+      sum2 += deviation * deviation;
+      ++count;
+      // sigma = noise * |clean value|, at least 1e-12
+      // (data_synthetic/synthetic_table.h).
+      const double sigma = std::max(0.02 * std::abs(a.value[c]), 1e-12);
+      EXPECT_NEAR(b.sigma[c], sigma, 1e-12 * sigma) << i;
+    }
+  }
+  ASSERT_GT(count, 600);
+  const double rms = std::sqrt(sum2 / count);
+  EXPECT_GE(rms, 0.01);
+  EXPECT_LE(rms, 0.03);
+}
+
+TEST(CliTest, HelpOnEveryCommand) {
+  const fs::path dir = TestDir();
+  for (const char* command : {"eval", "preset", "presets", "synth"}) {
+    const RunResult r = RunClothfit(dir, {command, "--help"});
+    EXPECT_EQ(r.status, 0) << command << "\n" << Describe(r);
+    EXPECT_NE(r.out.find("usage:"), std::string::npos) << command;
+    EXPECT_NE(r.out.find(command), std::string::npos) << command;
+    EXPECT_EQ(r.err, "") << command;
+  }
+  const RunResult top = RunClothfit(dir, {"--help"});
+  EXPECT_EQ(top.status, 0) << Describe(top);
+  EXPECT_NE(top.out.find("usage:"), std::string::npos);
+}
+
+// Bad input: exit status 2, one error message on stderr holding every
+// piece, nothing on stdout, and no file left behind in `dir` other than
+// those it held before.
+void ExpectBadInput(const fs::path& dir, const std::vector<std::string>& args,
+                    std::initializer_list<std::string> pieces) {
+  const std::set<std::string> before = FilesIn(dir);
+  const RunResult r = RunClothfit(dir, args);
+  std::string what;
+  for (const std::string& a : args) what += " " + a;
+  EXPECT_EQ(r.status, 2) << what << "\n" << Describe(r);
+  EXPECT_EQ(Count(r.err, "error"), 1u) << what << "\n" << r.err;
+  EXPECT_EQ(r.out, "") << what;
+  for (const std::string& piece : pieces) {
+    EXPECT_NE(r.err.find(piece), std::string::npos)
+        << what << ": '" << piece << "' not in: " << r.err;
+  }
+  EXPECT_EQ(FilesIn(dir), before) << what;
+}
+
+// A directory with a valid P.json (linen) and D.csv (a few directions).
+fs::path DirWithInputs() {
+  const fs::path dir = TestDir();
+  WriteParamFile(ParamFile{Preset("linen_plain"), ""},
+                 (dir / "P.json").string());
+  MeasurementTable table = DirectionTable(false);
+  table.rows.resize(5);
+  WriteTable(table, (dir / "D.csv").string());
+  return dir;
+}
+
+TEST(CliTest, EvalInputsOfDirWithInputsAreAccepted) {
+  // Guards the bad-input tests below: the same command with good inputs
+  // succeeds.
+  const fs::path dir = DirWithInputs();
+  const RunResult r =
+      RunClothfit(dir, {"eval", "--params", (dir / "P.json").string(),
+                        "--dirs", (dir / "D.csv").string(), "--out",
+                        (dir / "O.csv").string()});
+  EXPECT_EQ(r.status, 0) << Describe(r);
+  EXPECT_TRUE(fs::exists(dir / "O.csv"));
+}
+
+TEST(CliTest, EvalMissingParamsFile) {
+  const fs::path dir = DirWithInputs();
+  const std::string missing = (dir / "no_such_params.json").string();
+  ExpectBadInput(dir,
+                 {"eval", "--params", missing, "--dirs",
+                  (dir / "D.csv").string(), "--out", (dir / "O.csv").string()},
+                 {missing});
+}
+
+TEST(CliTest, EvalParamsWithUnknownKey) {
+  const fs::path dir = DirWithInputs();
+  const fs::path params = dir / "bad.json";
+  WriteText(params,
+            "{\"model\": \"thread\", \"eta\": 1.5, \"kd\": 0.1, "
+            "\"gamma_s_deg\": 2.5, \"gamma_v_deg\": 5, \"albedo\": 0.1, "
+            "\"shininess\": 3}\n");
+  ExpectBadInput(dir,
+                 {"eval", "--params", params.string(), "--dirs",
+                  (dir / "D.csv").string(), "--out", (dir / "O.csv").string()},
+                 {"shininess", params.string()});
+}
+
+TEST(CliTest, EvalDirsWithUnparsableNumber) {
+  const fs::path dir = DirWithInputs();
+  const fs::path dirs = dir / "bad_dirs.csv";
+  WriteText(dirs,
+            "# clothfit-table 1\n"
+            "theta_i,phi_i,theta_o,phi_o\n"
+            "10,20,30,40\n"
+            "10,20,3x0,40\n");
+  ExpectBadInput(dir,
+                 {"eval", "--params", (dir / "P.json").string(), "--dirs",
+                  dirs.string(), "--out", (dir / "O.csv").string()},
+                 {dirs.string() + ":4", "theta_o", "3x0"});
+}
+
+TEST(CliTest, UnknownOption) {
+  const fs::path dir = DirWithInputs();
+  ExpectBadInput(dir,
+                 {"eval", "--params", (dir / "P.json").string(), "--dirs",
+                  (dir / "D.csv").string(), "--out", (dir / "O.csv").string(),
+                  "--colour", "red"},
+                 {"--colour"});
+}
+
+TEST(CliTest, UnknownCommand) {
+  const fs::path dir = TestDir();
+  ExpectBadInput(dir, {"frobnicate", "--out", (dir / "O.csv").string()},
+                 {"frobnicate"});
+}
+
+TEST(CliTest, UnknownPreset) {
+  const fs::path dir = TestDir();
+  ExpectBadInput(dir, {"preset", "tweed"}, {"tweed"});
+  ExpectBadInput(dir,
+                 {"preset", "tweed", "--out", (dir / "P.json").string()},
+                 {"tweed"});
+  ExpectBadInput(dir,
+                 {"synth", "--preset", "tweed", "--out",
+                  (dir / "T.csv").string()},
+                 {"tweed"});
+}
+
+TEST(CliTest, EvalRejectsTransmittanceQuantity) {
+  const fs::path dir = DirWithInputs();
+  ExpectBadInput(dir,
+                 {"eval", "--params", (dir / "P.json").string(), "--dirs",
+                  (dir / "D.csv").string(), "--out", (dir / "O.csv").string(),
+                  "--quantity", "transmittance"},
+                 {"quantity", "transmittance"});
+}
+
+TEST(CliTest, OutputInsideMissingDirectory) {
+  const fs::path dir = DirWithInputs();
+  const std::string out = (dir / "no_such_dir" / "O.csv").string();
+  ExpectBadInput(dir,
+                 {"eval", "--params", (dir / "P.json").string(), "--dirs",
+                  (dir / "D.csv").string(), "--out", out},
+                 {out});
+  ExpectBadInput(dir, {"synth", "--preset", "velvet", "--rows", "10", "--out",
+                       out},
+                 {out});
+  ExpectBadInput(dir, {"preset", "velvet", "--out", out}, {out});
+  EXPECT_FALSE(fs::exists(dir / "no_such_dir"));
+}
+
+TEST(CliTest, SynthRejectsNegativeNoise) {
+  const fs::path dir = TestDir();
+  ExpectBadInput(dir,
+                 {"synth", "--preset", "velvet", "--rows", "10", "--noise",
+                  "-1", "--out", (dir / "T.csv").string()},
+                 {"noise"});
+}
+
+TEST(CliTest, SynthRejectsZeroRows) {
+  const fs::path dir = TestDir();
+  ExpectBadInput(dir,
+                 {"synth", "--preset", "velvet", "--rows", "0", "--out",
+                  (dir / "T.csv").string()},
+                 {"rows"});
+}
+
+}  // namespace
+}  // namespace clothfit

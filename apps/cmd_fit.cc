@@ -1,0 +1,160 @@
+// clothfit fit: fits a model's parameters to a measurement table (SPEC §5).
+#include <iostream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "fitting/cloth_fit.h"
+#include "fitting/thread_fit.h"
+#include "io/input_error.h"
+#include "models/presets.h"
+
+namespace clothfit {
+namespace {
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+SolverOptions ReadSolverOptions(const CommandArgs& args) {
+  SolverOptions s;
+  const std::string loss = args.Get("loss");
+  if (loss == "none") {
+    s.loss = Loss::kNone;
+  } else if (loss == "huber") {
+    s.loss = Loss::kHuber;
+  } else if (loss == "cauchy") {
+    s.loss = Loss::kCauchy;
+  } else {
+    args.Fail("option '--loss': expected none, huber or cauchy, got '" + loss +
+              "'");
+  }
+  s.loss_scale = args.GetDouble("loss-scale");
+  if (!(s.loss_scale > 0.0)) args.Fail("option '--loss-scale': must be > 0");
+  const long iterations = args.GetInt("max-iterations");
+  if (iterations < 1 || iterations > 100000) {
+    args.Fail("option '--max-iterations': must be in [1, 100000]");
+  }
+  s.max_iterations = static_cast<int>(iterations);
+  const long threads = args.GetInt("threads");
+  if (threads < 1 || threads > 256) args.Fail("option '--threads': must be in [1, 256]");
+  s.num_threads = static_cast<int>(threads);
+  return s;
+}
+
+// Prints the summary, writes the result when usable, and gives the status.
+int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
+           const std::vector<double>& truth) {
+  std::cout << FitReportText(report, truth);
+  if (!report.usable) {
+    std::cerr << "error: the fit did not reach a usable solution: "
+              << report.message << "; nothing written\n";
+    return 1;
+  }
+  WriteParamFile(ParamFile{fitted, FitReportJson(report)}, args.Get("out"));
+  std::cout << "wrote " << args.Get("out") << "\n";
+  if (!report.identifiability.empty()) {
+    std::cerr << "warning: " << report.identifiability
+              << " (the data do not determine them; fix them with --fix)\n";
+  }
+  if (!report.converged) {
+    std::cerr << "error: the solver stopped without converging ("
+              << report.termination << "): " << report.message << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int RunFit(int argc, char** argv) {
+  CommandArgs args(
+      "fit",
+      "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
+      "--preset NAME] --out P.json [options]",
+      "Fits a model to a measurement table with Ceres (Levenberg-Marquardt, "
+      "automatic derivatives, bounds),\nwrites the parameters with a \"fit\" "
+      "object (errors, standard deviations), and prints a summary.\nthread: "
+      "without --init, a default multi-start grid (docs/fitting.md). cloth: "
+      "the weave comes from\n--init or --preset; by default albedo, kd, "
+      "gamma_s_deg, gamma_v_deg of every thread are free.\nExit status 1 when "
+      "the fit reaches no usable solution or does not converge.");
+  args.Option("model", "M", "thread or cloth");
+  args.Option("data", "T.csv", "measurement table (SPEC §2)");
+  args.Option("init", "P.json", "initial parameters");
+  args.Option("preset", "NAME", "initial parameters from a preset (cloth)");
+  args.Option("out", "P.json", "result parameter file");
+  args.Option("fix", "A,B", "parameters held fixed (e.g. eta,kd or albedo)");
+  args.Option("free", "A,B", "free only these parameters");
+  args.Option("loss", "L", "robust loss: none, huber or cauchy", "none");
+  args.Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
+  args.Option("max-iterations", "N", "solver iteration cap", "200");
+  args.Option("threads", "N", "threads for residual evaluation", "1");
+  args.Option("truth", "P.json", "print these true values beside the fit");
+  args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  const std::string model = args.Required("model");
+  args.Required("out");
+  const SolverOptions solver = ReadSolverOptions(args);
+  ReadTableOptions read_options;
+  read_options.skip_invalid = args.Has("skip-invalid");
+  const ReadTableResult read = ReadTable(args.Required("data"), read_options);
+  if (read.skipped > 0) {
+    std::cerr << "warning: skipped " << read.skipped
+              << " invalid row(s); first: " << read.first_skip_reason << "\n";
+  }
+  const MeasurementTable& table = read.table;
+  const std::vector<std::string> fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
+  const std::vector<std::string> free_only =
+      SplitList(args.Has("free") ? args.Get("free") : "");
+  std::optional<ParamFile> truth;
+  if (args.Has("truth")) truth = ReadParamFile(args.Get("truth"));
+
+  if (model == "thread") {
+    ThreadFitOptions options;
+    options.solver = solver;
+    options.fix = fix;
+    options.free_only = free_only;
+    if (args.Has("preset")) args.Fail("--preset gives cloth parameters; use --init");
+    if (args.Has("init")) {
+      const ParamFile init = ReadParamFile(args.Get("init"));
+      if (!std::holds_alternative<ThreadParams>(init.params)) {
+        args.Fail(args.Get("init") + ": expected a thread parameter file");
+      }
+      options.init = std::get<ThreadParams>(init.params);
+    }
+    std::vector<double> truth_values;
+    if (truth && std::holds_alternative<ThreadParams>(truth->params)) {
+      truth_values.resize(ThreadParams::kSize);
+      ToArray(std::get<ThreadParams>(truth->params), truth_values.data());
+    }
+    const ThreadFitResult r = FitThread(table, options);
+    return Finish(args, r.params, r.report, truth_values);
+  }
+  if (model == "cloth") {
+    const ParamFile init = LoadModelOption(args, "init");
+    if (!std::holds_alternative<ClothParams>(init.params)) {
+      args.Fail("expected cloth initial parameters");
+    }
+    const ClothParams& layout = std::get<ClothParams>(init.params);
+    ClothFitOptions options;
+    options.solver = solver;
+    options.fix = fix;
+    options.free_only = free_only;
+    std::vector<double> truth_values;
+    if (truth && std::holds_alternative<ClothParams>(truth->params) &&
+        std::get<ClothParams>(truth->params).threads.size() == layout.threads.size()) {
+      truth_values = ClothParameterValues(std::get<ClothParams>(truth->params), layout);
+    }
+    const ClothFitResult r = FitCloth(table, layout, options);
+    return Finish(args, r.params, r.report, truth_values);
+  }
+  args.Fail("option '--model': expected thread or cloth, got '" + model + "'");
+}
+
+}  // namespace clothfit

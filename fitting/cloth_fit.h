@@ -1,0 +1,47 @@
+// Fits the cloth patch (Sadeghi et al. 2013 eq. 5-13) to a reflection table:
+// per thread albedo, kd, gamma_s_deg, gamma_v_deg by default; eta, coverage
+// and the magnitude of the tangent offsets (a scale on all of a thread's
+// offsets, keeping the weave's shape) on request. The weave (threads,
+// directions, tangent samples) comes from the initial parameters.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fitting/fit_result.h"
+#include "io/table.h"
+#include "models/microcylinder_cloth.h"
+
+namespace clothfit {
+
+struct ClothFitOptions {
+  SolverOptions solver;
+  // Names as in the report: "threads[J].NAME" with NAME one of
+  // ThreadParamNames(), "albedo", "coverage", "offset_scale"; a bare NAME
+  // applies to every thread.
+  std::vector<std::string> fix;
+  std::vector<std::string> free_only;
+  // Multi-start around the initial parameters: gammas x {1, 0.5, 2} and
+  // kd in {init, 0.1, 0.6}; ranked by cost, solved from the best few.
+  bool multi_start = true;
+  int solve_starts = 2;
+};
+
+struct ClothFitResult {
+  ClothParams params;
+  FitReport report;
+};
+
+// Names of the free-able entries, in parameter-vector order.
+std::vector<std::string> ClothParameterNames(const ClothParams& layout);
+// Values of `c` in that order; offset_scale is the ratio of c's largest
+// tangent offset to the layout's (1 when they are equal).
+std::vector<double> ClothParameterValues(const ClothParams& c,
+                                         const ClothParams& layout);
+
+// `init` must pass ValidateClothParams and have 1 to 3 threads. Throws
+// InputError for a transmittance table, more than 3 threads or unknown names.
+ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
+                        const ClothFitOptions& options);
+
+}  // namespace clothfit

@@ -1,0 +1,82 @@
+#include "fitting/fit_result.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+namespace clothfit {
+
+std::string FitReportJson(const FitReport& r) {
+  nlohmann::ordered_json j;
+  j["usable"] = r.usable;
+  j["converged"] = r.converged;
+  j["termination"] = r.termination;
+  j["message"] = r.message;
+  j["final_cost"] = r.final_cost;
+  j["rms"] = r.rms;
+  j["relative_rms"] = r.relative_rms;
+  j["iterations"] = r.iterations;
+  j["seconds"] = r.seconds;
+  j["residuals"] = r.residuals;
+  j["starts"] = r.starts;
+  nlohmann::ordered_json stddev = nlohmann::ordered_json::object();
+  nlohmann::ordered_json fixed = nlohmann::ordered_json::array();
+  nlohmann::ordered_json at_bound = nlohmann::ordered_json::array();
+  for (const ParameterReport& p : r.parameters) {
+    if (!p.free) {
+      fixed.push_back(p.name);
+      continue;
+    }
+    if (p.stddev >= 0.0) stddev[p.name] = p.stddev;
+    if (p.at_bound) at_bound.push_back(p.name);
+  }
+  j["stddev"] = stddev;
+  j["fixed"] = fixed;
+  if (!at_bound.empty()) j["at_bound"] = at_bound;
+  if (!r.identifiability.empty()) j["identifiability"] = r.identifiability;
+  return j.dump();
+}
+
+std::string FitReportText(const FitReport& r, const std::vector<double>& truth) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof(line),
+                "fit: %s (%s), %d iterations over %d start(s), %.3f s\n",
+                r.usable ? (r.converged ? "converged" : "usable, not converged")
+                         : "FAILED",
+                r.termination.c_str(), r.iterations, r.starts, r.seconds);
+  out << line;
+  std::snprintf(line, sizeof(line),
+                "cost %.6g, rms %.4g, relative rms %.4g over %d residuals\n",
+                r.final_cost, r.rms, r.relative_rms, r.residuals);
+  out << line;
+  std::snprintf(line, sizeof(line), "%-28s %14s %12s%s\n", "parameter", "value",
+                "stddev", truth.empty() ? "" : "           true");
+  out << line;
+  for (size_t i = 0; i < r.parameters.size(); ++i) {
+    const ParameterReport& p = r.parameters[i];
+    char sd[32];
+    if (!p.free) {
+      std::snprintf(sd, sizeof(sd), "fixed");
+    } else if (p.stddev >= 0.0) {
+      std::snprintf(sd, sizeof(sd), "%.3g", p.stddev);
+    } else {
+      std::snprintf(sd, sizeof(sd), "n/a");
+    }
+    std::snprintf(line, sizeof(line), "%-28s %14.6g %12s", p.name.c_str(),
+                  p.value, sd);
+    out << line;
+    if (i < truth.size()) {
+      std::snprintf(line, sizeof(line), " %14.6g", truth[i]);
+      out << line;
+    }
+    if (p.at_bound) out << "  (at bound)";
+    out << "\n";
+  }
+  if (!r.identifiability.empty()) out << r.identifiability << "\n";
+  if (!r.usable) out << "reason: " << r.message << "\n";
+  return out.str();
+}
+
+}  // namespace clothfit

@@ -1,0 +1,56 @@
+// What every fit reports (SPEC §4 "fit" object, issue 3): cost, errors,
+// iterations, time, termination, and per-parameter standard deviations, or
+// an honest statement of which parameters the data cannot determine.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/table.h"
+
+namespace clothfit {
+
+enum class Loss { kNone, kHuber, kCauchy };
+
+struct SolverOptions {
+  int max_iterations = 200;
+  Loss loss = Loss::kNone;
+  double loss_scale = 1.0;   // in units of sigma (residuals are normalised)
+  int num_threads = 1;
+};
+
+struct ParameterReport {
+  std::string name;
+  double value = 0.0;
+  bool free = false;
+  double stddev = -1.0;      // < 0: not available (fixed or not identifiable)
+  double lower = 0.0, upper = 0.0;
+  bool at_bound = false;     // a free parameter ended on its bound
+};
+
+struct FitReport {
+  bool usable = false;          // solver reached a usable solution
+  bool converged = false;       // and met a convergence criterion
+  std::string termination;      // Ceres termination type
+  std::string message;          // Ceres message or the reason it is unusable
+  double final_cost = 0.0;      // 1/2 sum of squared normalised residuals
+  double rms = 0.0;             // RMS of (model - measured), data units
+  double relative_rms = 0.0;    // RMS(model - measured) / RMS(measured)
+  int iterations = 0;
+  double seconds = 0.0;
+  int residuals = 0;
+  int starts = 1;               // multi-start: how many solves were run
+  std::vector<ParameterReport> parameters;
+  // Empty when the covariance exists; otherwise names the parameters the
+  // data cannot determine, e.g. "not identifiable: eta, kd".
+  std::string identifiability;
+};
+
+// The "fit" object of a result file, as JSON text.
+std::string FitReportJson(const FitReport& report);
+// A one-screen summary; `truth` (same order as parameters, may be empty)
+// adds a column of true values.
+std::string FitReportText(const FitReport& report,
+                          const std::vector<double>& truth = {});
+
+}  // namespace clothfit

@@ -1,0 +1,320 @@
+#include "fitting/least_squares.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
+
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+// The problem at x, with bounds and free/fixed entries applied.
+struct BuiltProblem {
+  std::unique_ptr<ceres::LossFunction> loss;
+  std::unique_ptr<ceres::Problem> problem;
+  std::vector<double*> blocks;
+};
+
+std::unique_ptr<ceres::LossFunction> MakeLoss(const SolverOptions& options) {
+  switch (options.loss) {
+    case Loss::kHuber:
+      return std::make_unique<ceres::HuberLoss>(options.loss_scale);
+    case Loss::kCauchy:
+      return std::make_unique<ceres::CauchyLoss>(options.loss_scale);
+    case Loss::kNone:
+      break;
+  }
+  return nullptr;
+}
+
+void Build(const LeastSquaresProblem& lsq, const SolverOptions& options,
+           std::vector<double>* x, BuiltProblem* out) {
+  out->loss = MakeLoss(options);
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  out->problem = std::make_unique<ceres::Problem>(problem_options);
+  out->blocks.clear();
+  int offset = 0;
+  for (int size : lsq.block_sizes) {
+    out->blocks.push_back(x->data() + offset);
+    offset += size;
+  }
+  lsq.add_residuals(out->blocks, out->loss.get(), out->problem.get());
+  offset = 0;
+  for (size_t b = 0; b < lsq.block_sizes.size(); ++b) {
+    const int size = lsq.block_sizes[b];
+    double* block = out->blocks[b];
+    if (!out->problem->HasParameterBlock(block)) {
+      offset += size;
+      continue;
+    }
+    std::vector<int> fixed;
+    for (int i = 0; i < size; ++i) {
+      const ParameterSpec& spec = lsq.specs[offset + i];
+      if (spec.free) {
+        out->problem->SetParameterLowerBound(block, i, spec.lower);
+        out->problem->SetParameterUpperBound(block, i, spec.upper);
+      } else {
+        fixed.push_back(i);
+      }
+    }
+    if (static_cast<int>(fixed.size()) == size) {
+      out->problem->SetParameterBlockConstant(block);
+    } else if (!fixed.empty()) {
+      out->problem->SetManifold(block, new ceres::SubsetManifold(size, fixed));
+    }
+    offset += size;
+  }
+}
+
+// Standard deviations from the Jacobian J of the free parameters at the
+// solution. Columns are scaled to unit norm first (D = diag |J_c|), so that
+// units do not decide what counts as rank-deficient: albedo (~0.01) and
+// gamma_v_deg (~60) differ by four orders of magnitude, enough for
+// ceres::Covariance, which tests the condition of the unscaled J^T J, to
+// call a well-determined problem singular. With J D^-1 = U S V^T,
+//   Cov = D^-1 V S^-2 V^T D^-1 * s2,
+// s2 = 1 when the data give sigma, else the residual variance. A singular
+// value below kMinSingularRatio * s_max means the data cannot determine the
+// combination of parameters in its right singular vector: those parameters
+// are named instead.
+constexpr double kMinSingularRatio = 1e-7;
+
+void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
+            BuiltProblem* built, FitReport* report) {
+  ceres::Problem::EvaluateOptions eval;
+  for (double* block : built->blocks) {
+    if (built->problem->HasParameterBlock(block) &&
+        !built->problem->IsParameterBlockConstant(block)) {
+      eval.parameter_blocks.push_back(block);
+    }
+  }
+  // Free entries in the Jacobian's column order (blocks in order; a
+  // SubsetManifold's tangent space keeps the free entries in order).
+  std::vector<int> free_index;
+  {
+    int offset = 0;
+    for (size_t b = 0; b < lsq.block_sizes.size(); ++b) {
+      const bool in_problem =
+          std::find(eval.parameter_blocks.begin(), eval.parameter_blocks.end(),
+                    built->blocks[b]) != eval.parameter_blocks.end();
+      for (int i = 0; i < lsq.block_sizes[b]; ++i) {
+        if (in_problem && lsq.specs[offset + i].free) {
+          free_index.push_back(offset + i);
+        }
+      }
+      offset += lsq.block_sizes[b];
+    }
+  }
+  std::vector<double> stddev(x.size(), -1.0);
+  const int n = static_cast<int>(free_index.size());
+  if (n > 0) {
+    ceres::CRSMatrix crs;
+    built->problem->Evaluate(eval, nullptr, nullptr, nullptr, &crs);
+    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+    for (int r = 0; r < crs.num_rows; ++r) {
+      for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
+        j(r, crs.cols[k]) = crs.values[k];
+      }
+    }
+    std::vector<std::string> involved;
+    if (j.cols() != n) {
+      report->identifiability = "not identifiable: internal column mismatch";
+    } else {
+      Eigen::VectorXd norms = j.colwise().norm();
+      for (int c = 0; c < n; ++c) {
+        if (!(norms[c] > 0.0)) {
+          involved.push_back(lsq.specs[free_index[c]].name);
+          norms[c] = 1.0;
+        }
+      }
+      const Eigen::MatrixXd scaled = j * norms.cwiseInverse().asDiagonal();
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
+      const Eigen::VectorXd sv = svd.singularValues();
+      const Eigen::MatrixXd& v = svd.matrixV();
+      const double s_max = sv.size() > 0 ? sv[0] : 0.0;
+      for (int k = 0; k < sv.size(); ++k) {
+        if (sv[k] > kMinSingularRatio * s_max) continue;
+        for (int c = 0; c < n; ++c) {
+          const std::string& name = lsq.specs[free_index[c]].name;
+          if (std::abs(v(c, k)) > 0.2 &&
+              std::find(involved.begin(), involved.end(), name) ==
+                  involved.end()) {
+            involved.push_back(name);
+          }
+        }
+      }
+      if (sv.size() < n) {  // fewer residuals than free parameters
+        for (int c = 0; c < n; ++c) {
+          involved.push_back(lsq.specs[free_index[c]].name);
+        }
+      }
+      if (involved.empty()) {
+        const int dof = report->residuals - n;
+        const double s2 =
+            lsq.sigma_known || dof <= 0 ? 1.0 : 2.0 * report->final_cost / dof;
+        const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
+        for (int c = 0; c < n; ++c) {
+          const double var = w.row(c).squaredNorm() / (norms[c] * norms[c]);
+          stddev[free_index[c]] = std::sqrt(var * s2);
+        }
+      } else {
+        report->identifiability = "not identifiable:";
+        for (size_t k = 0; k < involved.size(); ++k) {
+          report->identifiability += (k ? ", " : " ") + involved[k];
+        }
+      }
+    }
+  }
+  for (size_t i = 0; i < x.size(); ++i) {
+    const ParameterSpec& spec = lsq.specs[i];
+    ParameterReport p;
+    p.name = spec.name;
+    p.value = x[i];
+    p.free = spec.free;
+    p.lower = spec.lower;
+    p.upper = spec.upper;
+    const double span = std::max(1e-12, spec.upper - spec.lower);
+    p.at_bound = spec.free && (p.value - spec.lower < 1e-9 * span ||
+                               spec.upper - p.value < 1e-9 * span);
+    p.stddev = stddev[i];
+    report->parameters.push_back(p);
+  }
+}
+
+bool NameMatches(const std::string& pattern, const std::string& name) {
+  if (pattern == name) return true;
+  const size_t dot = name.rfind('.');
+  const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
+  if (pattern == last) return true;
+  // "albedo" (or "threads[0].albedo") stands for the three channels.
+  for (const char* channel : {"_r", "_g", "_b"}) {
+    if (pattern + channel == name || pattern + channel == last) return true;
+  }
+  return false;
+}
+
+// Sets `free` on the entries each pattern matches; throws for a pattern
+// matching nothing.
+void Mark(const std::vector<std::string>& patterns, const char* option,
+          bool free, std::vector<ParameterSpec>* specs) {
+  for (const std::string& pattern : patterns) {
+    bool any = false;
+    for (ParameterSpec& spec : *specs) {
+      if (NameMatches(pattern, spec.name)) {
+        spec.free = free;
+        any = true;
+      }
+    }
+    if (!any) {
+      std::string known;
+      for (const ParameterSpec& spec : *specs) known += " " + spec.name;
+      throw InputError(std::string(option) + ": unknown parameter '" + pattern +
+                       "' (known:" + known + ")");
+    }
+  }
+}
+
+}  // namespace
+
+void ApplyFreeFix(const std::vector<std::string>& fix,
+                  const std::vector<std::string>& free_only,
+                  std::vector<ParameterSpec>* specs) {
+  if (!free_only.empty()) {
+    for (ParameterSpec& spec : *specs) spec.free = false;
+    Mark(free_only, "--free", true, specs);
+  }
+  Mark(fix, "--fix", false, specs);
+}
+
+double EvaluateCost(const LeastSquaresProblem& lsq,
+                    const std::vector<double>& x0) {
+  std::vector<double> x = x0;
+  BuiltProblem built;
+  Build(lsq, SolverOptions(), &x, &built);
+  double cost = 0.0;
+  built.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr,
+                          nullptr, nullptr);
+  return std::isfinite(cost) ? cost : HUGE_VAL;
+}
+
+FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
+                            const std::vector<std::vector<double>>& starts,
+                            const SolverOptions& options,
+                            std::vector<double>* x_out,
+                            const std::function<void(int, int)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FitReport best;
+  best.final_cost = HUGE_VAL;
+  std::vector<double> best_x;
+  int total_iterations = 0;
+  for (size_t s = 0; s < starts.size(); ++s) {
+    if (progress) progress(static_cast<int>(s) + 1, static_cast<int>(starts.size()));
+    std::vector<double> x = starts[s];
+    for (size_t i = 0; i < x.size(); ++i) {
+      if (lsq.specs[i].free) {
+        x[i] = std::min(std::max(x[i], lsq.specs[i].lower), lsq.specs[i].upper);
+      }
+    }
+    BuiltProblem built;
+    Build(lsq, options, &x, &built);
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_QR;
+    solver_options.max_num_iterations = options.max_iterations;
+    solver_options.num_threads = options.num_threads;
+    solver_options.function_tolerance = 1e-12;
+    solver_options.parameter_tolerance = 1e-12;
+    solver_options.gradient_tolerance = 1e-14;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, built.problem.get(), &summary);
+    total_iterations += static_cast<int>(summary.iterations.size());
+    bool finite = std::isfinite(summary.final_cost);
+    for (double v : x) finite = finite && std::isfinite(v);
+    const bool usable = summary.IsSolutionUsable() && finite;
+    if (usable && summary.final_cost < best.final_cost) {
+      best = FitReport();
+      best.usable = true;
+      best.converged = summary.termination_type == ceres::CONVERGENCE;
+      best.termination = ceres::TerminationTypeToString(summary.termination_type);
+      best.message = summary.message;
+      best.final_cost = summary.final_cost;
+      best.residuals = summary.num_residuals;
+      best_x = x;
+    } else if (!best.usable && best_x.empty()) {
+      best.termination = ceres::TerminationTypeToString(summary.termination_type);
+      best.message = finite ? summary.message
+                            : "non-finite cost or parameters: " + summary.message;
+    }
+  }
+  best.starts = static_cast<int>(starts.size());
+  best.iterations = total_iterations;
+  if (!best_x.empty()) {
+    // The covariance is that of the problem solved, robust loss included.
+    BuiltProblem built;
+    std::vector<double> x = best_x;
+    Build(lsq, options, &x, &built);
+    Report(lsq, x, &built, &best);
+    std::vector<double> model, measured;
+    lsq.predict(x, &model, &measured);
+    double se = 0.0, ss = 0.0;
+    for (size_t i = 0; i < model.size(); ++i) {
+      se += (model[i] - measured[i]) * (model[i] - measured[i]);
+      ss += measured[i] * measured[i];
+    }
+    const double n = std::max<size_t>(1, model.size());
+    best.rms = std::sqrt(se / n);
+    best.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+    *x_out = x;
+  }
+  best.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return best;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,69 @@
+// The shared Ceres machinery of the fits: one flat parameter vector split
+// into blocks, bounds, free/fixed entries, robust loss, multi-start, and the
+// covariance-based report. Each model's fit (thread_fit.cc, cloth_fit.cc)
+// supplies the residual functors; Eigen and Ceres stay inside fitting/*.cc.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fitting/fit_result.h"
+
+namespace ceres {
+class LossFunction;
+class Problem;
+}  // namespace ceres
+
+namespace clothfit {
+
+// One parameter of the flat vector.
+struct ParameterSpec {
+  std::string name;
+  double lower = 0.0, upper = 0.0;
+  bool free = true;
+};
+
+// A problem over the blocks of `x`: block b holds x[offset_b, offset_b +
+// size_b). `add_residuals` adds the residual blocks to `problem`, given the
+// block pointers (into the x being solved).
+struct LeastSquaresProblem {
+  std::vector<ParameterSpec> specs;  // one per entry of x
+  std::vector<int> block_sizes;      // sum = specs.size()
+  // Residuals are (model - measured) / sigma with sigma given by the data;
+  // false: sigma is unknown (1), and the covariance is scaled by the
+  // residual variance 2 cost / (residuals - free parameters).
+  bool sigma_known = true;
+  // Adds every residual block; `loss` (may be null) goes to each of them.
+  std::function<void(const std::vector<double*>& blocks,
+                     ceres::LossFunction* loss, ceres::Problem* problem)>
+      add_residuals;
+  // Model values minus data and the data, in data units, for rms errors:
+  // called with the final x; returns pairs (model, measured) flattened.
+  std::function<void(const std::vector<double>& x, std::vector<double>* model,
+                     std::vector<double>* measured)>
+      predict;
+};
+
+// Solves from each start in `starts` (each a full x), keeps the lowest cost,
+// and reports on it; *x receives the best solution. `progress` (may be
+// null) is told "start i of n" as it goes.
+FitReport SolveLeastSquares(
+    const LeastSquaresProblem& problem, const std::vector<std::vector<double>>& starts,
+    const SolverOptions& options, std::vector<double>* x,
+    const std::function<void(int, int)>& progress = nullptr);
+
+// Marks entries fixed/free. A name matches an entry by its full name
+// ("threads[0].kd"), by its last part ("kd": every thread), and "albedo"
+// matches the three albedo_r/g/b. `free_only`, when not empty, fixes every
+// entry it does not match; `fix` then fixes what it matches. Throws
+// InputError naming `option` and the name when a name matches nothing.
+void ApplyFreeFix(const std::vector<std::string>& fix,
+                  const std::vector<std::string>& free_only,
+                  std::vector<ParameterSpec>* specs);
+
+// Half the sum of squared residuals at x (no solve), for ranking starts.
+double EvaluateCost(const LeastSquaresProblem& problem,
+                    const std::vector<double>& x);
+
+}  // namespace clothfit
