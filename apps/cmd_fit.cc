@@ -95,6 +95,9 @@ int RunFit(int argc, char** argv) {
   args.Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
   args.Option("max-iterations", "N", "solver iteration cap", "200");
   args.Option("threads", "N", "threads for residual evaluation", "1");
+  args.Option("starts", "N",
+              "multi-start: solve from the N best-ranked starting points "
+              "(default: 2 thread, 1 cloth)");
   args.Option("truth", "P.json", "print these true values beside the fit");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
@@ -112,6 +115,12 @@ int RunFit(int argc, char** argv) {
   const std::vector<std::string> fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
   const std::vector<std::string> free_only =
       SplitList(args.Has("free") ? args.Get("free") : "");
+  int starts = 0;  // 0: the model's default
+  if (args.Has("starts")) {
+    const long n = args.GetInt("starts");
+    if (n < 1 || n > 100) args.Fail("option '--starts': must be in [1, 100]");
+    starts = static_cast<int>(n);
+  }
   std::optional<ParamFile> truth;
   if (args.Has("truth")) truth = ReadParamFile(args.Get("truth"));
 
@@ -120,6 +129,7 @@ int RunFit(int argc, char** argv) {
     options.solver = solver;
     options.fix = fix;
     options.free_only = free_only;
+    if (starts > 0) options.solve_starts = starts;
     if (args.Has("preset")) args.Fail("--preset gives cloth parameters; use --init");
     if (args.Has("init")) {
       const ParamFile init = ReadParamFile(args.Get("init"));
@@ -146,6 +156,7 @@ int RunFit(int argc, char** argv) {
     options.solver = solver;
     options.fix = fix;
     options.free_only = free_only;
+    if (starts > 0) options.solve_starts = starts;
     std::vector<double> truth_values;
     if (truth && std::holds_alternative<ClothParams>(truth->params) &&
         std::get<ClothParams>(truth->params).threads.size() == layout.threads.size()) {

@@ -1,6 +1,7 @@
 #include "fitting/cloth_fit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include <ceres/ceres.h>
@@ -12,59 +13,95 @@
 namespace clothfit {
 namespace {
 
-// Parameter vector: per thread j, a block of the ThreadParams layout (7)
-// followed by a weave block [coverage, offset_scale] (2). The thread's
-// tangent offsets are offset_scale times the initial ones.
+// Parameter vector: per thread j, the ThreadParams layout (7 entries) then
+// [coverage, offset_scale]; the thread's tangent offsets are offset_scale
+// times the initial ones. Ceres sees one block per thread's ThreadParams
+// and, only when some coverage or offset_scale is free, one [coverage,
+// offset_scale] block per thread: fewer Jet lanes when they are fixed.
 constexpr int kWeaveSize = 2;
+constexpr int kPerThread = ThreadParams::kSize + kWeaveSize;
 
-// The weave shared by all residuals: directions and base offsets.
-struct Weave {
-  ClothParams layout;
-};
-
-template <typename T>
-ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks) {
-  ClothParamsT<T> c;
-  c.threads.resize(weave.layout.threads.size());
-  for (size_t j = 0; j < c.threads.size(); ++j) {
-    const ClothThread& base = weave.layout.threads[j];
-    ClothThreadT<T>& th = c.threads[j];
-    th.direction = base.direction;
-    th.params = ThreadParamsFromArray(blocks[2 * j]);
-    th.coverage = blocks[2 * j + 1][0];
-    th.offsets_deg.resize(base.offsets_deg.size());
-    for (size_t k = 0; k < base.offsets_deg.size(); ++k) {
-      th.offsets_deg[k] = blocks[2 * j + 1][1] * T(base.offsets_deg[k]);
-    }
-  }
-  return c;
+bool EndsWith(const std::string& name, const std::string& suffix) {
+  return name.size() >= suffix.size() &&
+         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// The tangent samples of one row, computed once when the directions and
-// the tangent offsets are fixed (then only the thread BSDF needs Jets).
+// What stays fixed through a fit, shared by all residuals.
+struct Weave {
+  ClothParams layout;        // directions, base offsets, fixed values
+  bool weave_blocks = false;  // coverage/offset_scale blocks passed to Ceres
+};
+
+// The tangent samples of one row, computed once when the directions and the
+// tangent offsets are fixed; with eta fixed, their Fresnel terms too. Then
+// only the parameter-dependent part of the thread BSDF needs Jets.
 struct RowSamples {
   std::vector<std::vector<TangentSample<double>>> per_thread;
+  // per_thread[j][k]'s Fresnel term; empty for a thread whose eta is free.
+  std::vector<std::vector<double>> fresnel;
+
   int Count(size_t j) const { return static_cast<int>(per_thread[j].size()); }
   const TangentSample<double>& Get(size_t j, int k) const {
     return per_thread[j][k];
   }
+  template <typename T>
+  Vec3<T> Bsdf(size_t j, int k, const TangentSample<double>& sample,
+               const ThreadParamsT<T>& params) const {
+    if (fresnel[j].empty()) return ThreadBsdf(sample.geometry, params);
+    return ThreadBsdfGivenFresnel(sample.geometry, fresnel[j][k], params);
+  }
 };
 
-RowSamples ComputeRowSamples(const ClothParams& layout, const TableRow& row) {
+RowSamples ComputeRowSamples(const ClothParams& layout,
+                             const std::vector<bool>& eta_fixed,
+                             const TableRow& row) {
   RowSamples out;
   out.per_thread.resize(layout.threads.size());
+  out.fresnel.resize(layout.threads.size());
   if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) return out;  // reflection only
   for (size_t j = 0; j < layout.threads.size(); ++j) {
-    for (double offset : layout.threads[j].offsets_deg) {
-      out.per_thread[j].push_back(ComputeTangentSample(
-          layout.threads[j].direction, offset, row.wi, row.wo));
+    const ClothThread& th = layout.threads[j];
+    for (double offset : th.offsets_deg) {
+      const TangentSample<double> sample =
+          ComputeTangentSample(th.direction, offset, row.wi, row.wo);
+      out.per_thread[j].push_back(sample);
+      if (eta_fixed[j]) {
+        out.fresnel[j].push_back(
+            sample.valid ? ThreadFresnel(sample.geometry, th.params.eta) : 0.0);
+      }
     }
   }
   return out;
 }
 
+// The cloth described by Ceres' blocks (see kPerThread).
+template <typename T>
+ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
+                                bool with_offsets) {
+  const size_t n = weave.layout.threads.size();
+  const int stride = weave.weave_blocks ? 2 : 1;
+  ClothParamsT<T> c;
+  c.threads.resize(n);
+  for (size_t j = 0; j < n; ++j) {
+    const ClothThread& base = weave.layout.threads[j];
+    ClothThreadT<T>& th = c.threads[j];
+    th.direction = base.direction;
+    th.params = ThreadParamsFromArray(blocks[stride * j]);
+    const T* w = weave.weave_blocks ? blocks[stride * j + 1] : nullptr;
+    th.coverage = w ? w[0] : T(base.coverage);
+    if (with_offsets) {
+      th.offsets_deg.resize(base.offsets_deg.size());
+      for (size_t k = 0; k < base.offsets_deg.size(); ++k) {
+        th.offsets_deg[k] = (w ? w[1] : T(1.0)) * T(base.offsets_deg[k]);
+      }
+    }
+  }
+  return c;
+}
+
 // residual_c = (model_c - measured_c) sqrt(weight) / sigma_c, c < kChannels.
-// One overload per thread count (1 to 3): Ceres passes two blocks a thread.
+// Ceres passes one block per thread (two with weave blocks), 1 to 3 threads:
+// one call operator per block count.
 template <int kChannels>
 struct ClothResidual {
   std::shared_ptr<const Weave> weave;
@@ -77,16 +114,12 @@ struct ClothResidual {
   bool Residual(const T* const* blocks, T* residual) const {
     Vec3<T> model;
     if (samples) {
-      ClothParamsT<T> cloth;  // coverages and thread parameters only
-      cloth.threads.resize(weave->layout.threads.size());
-      for (size_t j = 0; j < cloth.threads.size(); ++j) {
-        cloth.threads[j].params = ThreadParamsFromArray(blocks[2 * j]);
-        cloth.threads[j].coverage = blocks[2 * j + 1][0];
-      }
-      model = FromCosineWeighted(ClothRhoFromSamples(cloth, *samples, wi.z),
-                                 wi.z, quantity);
+      model = FromCosineWeighted(
+          ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false), *samples,
+                              wi.z),
+          wi.z, quantity);
     } else {
-      model = ClothValue(ClothFromBlocks(*weave, blocks), Cast<T>(wi),
+      model = ClothValue(ClothFromBlocks(*weave, blocks, true), Cast<T>(wi),
                          Cast<T>(wo), quantity);
     }
     for (int c = 0; c < kChannels; ++c) {
@@ -95,20 +128,30 @@ struct ClothResidual {
     return true;
   }
   template <typename T>
-  bool operator()(const T* p0, const T* w0, T* r) const {
-    const T* const b[] = {p0, w0};
+  bool operator()(const T* b0, T* r) const {
+    const T* const b[] = {b0};
     return Residual(b, r);
   }
   template <typename T>
-  bool operator()(const T* p0, const T* w0, const T* p1, const T* w1,
+  bool operator()(const T* b0, const T* b1, T* r) const {
+    const T* const b[] = {b0, b1};
+    return Residual(b, r);
+  }
+  template <typename T>
+  bool operator()(const T* b0, const T* b1, const T* b2, T* r) const {
+    const T* const b[] = {b0, b1, b2};
+    return Residual(b, r);
+  }
+  template <typename T>
+  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
                   T* r) const {
-    const T* const b[] = {p0, w0, p1, w1};
+    const T* const b[] = {b0, b1, b2, b3};
     return Residual(b, r);
   }
   template <typename T>
-  bool operator()(const T* p0, const T* w0, const T* p1, const T* w1,
-                  const T* p2, const T* w2, T* r) const {
-    const T* const b[] = {p0, w0, p1, w1, p2, w2};
+  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
+                  const T* b4, const T* b5, T* r) const {
+    const T* const b[] = {b0, b1, b2, b3, b4, b5};
     return Residual(b, r);
   }
 
@@ -116,19 +159,27 @@ struct ClothResidual {
                                      const TableRow& row, Quantity quantity,
                                      std::shared_ptr<const RowSamples> samples) {
     constexpr int P = ThreadParams::kSize, W = kWeaveSize;
+    const size_t n = weave->layout.threads.size();
+    const bool w = weave->weave_blocks;
     auto* f = new ClothResidual{std::move(weave), row.wi, row.wo, row.value,
                                 std::sqrt(row.weight) / row.sigma, quantity,
                                 std::move(samples)};
-    switch (f->weave->layout.threads.size()) {
-      case 1:
-        return new ceres::AutoDiffCostFunction<ClothResidual, kChannels, P, W>(f);
-      case 2:
-        return new ceres::AutoDiffCostFunction<ClothResidual, kChannels, P, W,
-                                               P, W>(f);
-      default:
-        return new ceres::AutoDiffCostFunction<ClothResidual, kChannels, P, W,
-                                               P, W, P, W>(f);
+    using ceres::AutoDiffCostFunction;
+    if (n == 1) {
+      if (w) return new AutoDiffCostFunction<ClothResidual, kChannels, P, W>(f);
+      return new AutoDiffCostFunction<ClothResidual, kChannels, P>(f);
     }
+    if (n == 2) {
+      if (w) {
+        return new AutoDiffCostFunction<ClothResidual, kChannels, P, W, P, W>(f);
+      }
+      return new AutoDiffCostFunction<ClothResidual, kChannels, P, P>(f);
+    }
+    if (w) {
+      return new AutoDiffCostFunction<ClothResidual, kChannels, P, W, P, W, P,
+                                      W>(f);
+    }
+    return new AutoDiffCostFunction<ClothResidual, kChannels, P, P, P>(f);
   }
 };
 
@@ -167,60 +218,115 @@ std::vector<double> ToVector(const ClothParams& c) {
   return x;
 }
 
-ClothParams FromVector(const Weave& weave, const std::vector<double>& x) {
-  std::vector<const double*> blocks;
-  for (size_t j = 0; j < weave.layout.threads.size(); ++j) {
-    blocks.push_back(x.data() + j * (ThreadParams::kSize + kWeaveSize));
-    blocks.push_back(blocks.back() + ThreadParams::kSize);
-  }
-  ClothParams c = ClothFromBlocks<double>(weave, blocks.data());
+ClothParams FromVector(const ClothParams& layout, const std::vector<double>& x) {
+  ClothParams c = layout;
   for (size_t j = 0; j < c.threads.size(); ++j) {
-    c.threads[j].curve = weave.layout.threads[j].curve;
+    const double* t = x.data() + j * kPerThread;
+    c.threads[j].params = ThreadParamsFromArray(t);
+    c.threads[j].coverage = t[ThreadParams::kSize];
+    for (double& o : c.threads[j].offsets_deg) o *= t[ThreadParams::kSize + 1];
   }
   return c;
 }
 
-// The model is linear in the albedos: per channel, the least-squares albedo
-// of each thread, with negative ones clamped to zero (2-3 unknowns).
-void SolveAlbedos(const MeasurementTable& table, ClothParams* c) {
+// Values of the model over the table, per row and channel.
+using Values = std::vector<glm::dvec3>;
+
+Values Predict(const MeasurementTable& table, const ClothParams& c,
+               const std::vector<std::shared_ptr<const RowSamples>>& samples) {
+  Values out(table.rows.size());
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    out[i] = samples[i] ? FromCosineWeighted(
+                              ClothRhoFromSamples(c, *samples[i], row.wi.z),
+                              row.wi.z, table.quantity)
+                        : ClothValue(c, row.wi, row.wo, table.quantity);
+  }
+  return out;
+}
+
+// The model is linear in each thread's albedo A and in B = A kd:
+//   model = base + sum_j A_j P_j + B_j (R_j - P_j),
+// P_j = model(A_j = 1, kd_j = 0) - base, R_j = model(A_j = 1, kd_j = 1) -
+// base, base = model(all A = 0). Per channel, solves the weighted least
+// squares for A_j >= 0 (and 0 <= B_j <= A_j where kd_j is free) by projected
+// Gauss-Seidel, then sets kd_j = sum_c B_jc / sum_c A_jc. Where kd_j is
+// fixed, B_j = kd_j A_j.
+void SolveLinearParameters(
+    const MeasurementTable& table,
+    const std::vector<std::shared_ptr<const RowSamples>>& samples,
+    const std::vector<bool>& kd_free, ClothParams* c) {
   const size_t n = c->threads.size();
   ClothParams base = *c;
   for (ClothThread& th : base.threads) th.params.albedo = glm::dvec3(0.0);
-  std::vector<ClothParams> unit(n, base);
-  for (size_t j = 0; j < n; ++j) unit[j].threads[j].params.albedo = glm::dvec3(1.0);
-  for (int channel = 0; channel < 3; ++channel) {
-    std::vector<double> ata(n * n, 0.0), atb(n, 0.0);
-    for (const TableRow& row : table.rows) {
-      const double w = row.weight / (row.sigma[channel] * row.sigma[channel]);
-      const double s = ClothValue(base, row.wi, row.wo, table.quantity)[channel];
-      std::vector<double> a(n);
-      for (size_t j = 0; j < n; ++j) {
-        a[j] = ClothValue(unit[j], row.wi, row.wo, table.quantity)[channel] - s;
-      }
-      for (size_t i = 0; i < n; ++i) {
-        atb[i] += w * a[i] * (row.value[channel] - s);
-        for (size_t j = 0; j < n; ++j) ata[i * n + j] += w * a[i] * a[j];
-      }
+  const Values v0 = Predict(table, base, samples);
+  std::vector<Values> p(n), r(n);
+  for (size_t j = 0; j < n; ++j) {
+    ClothParams one = base;
+    one.threads[j].params.albedo = glm::dvec3(1.0);
+    one.threads[j].params.kd = kd_free[j] ? 0.0 : c->threads[j].params.kd;
+    p[j] = Predict(table, one, samples);
+    if (kd_free[j]) {
+      one.threads[j].params.kd = 1.0;
+      r[j] = Predict(table, one, samples);
     }
-    // Jacobi-preconditioned projected Gauss-Seidel: tiny, non-negative.
-    std::vector<double> albedo(n, 0.0);
-    for (int sweep = 0; sweep < 200; ++sweep) {
-      for (size_t i = 0; i < n; ++i) {
-        if (ata[i * n + i] <= 0.0) continue;
-        double r = atb[i];
-        for (size_t j = 0; j < n; ++j) {
-          if (j != i) r -= ata[i * n + j] * albedo[j];
-        }
-        albedo[i] = std::clamp(r / ata[i * n + i], 0.0, 1e3);
-      }
-    }
-    for (size_t j = 0; j < n; ++j) c->threads[j].params.albedo[channel] = albedo[j];
   }
-}
-
-bool NameEndsWith(const std::string& name, const std::string& suffix) {
-  return name.size() >= suffix.size() &&
-         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  // Unknowns per channel: A_0..A_{n-1}, then B_j for threads with kd free.
+  std::vector<int> b_index(n, -1);
+  int m = static_cast<int>(n);
+  for (size_t j = 0; j < n; ++j) {
+    if (kd_free[j]) b_index[j] = m++;
+  }
+  std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
+  for (int ch = 0; ch < table.channels; ++ch) {
+    std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
+    for (size_t i = 0; i < table.rows.size(); ++i) {
+      const TableRow& row = table.rows[i];
+      const double w = row.weight / (row.sigma[ch] * row.sigma[ch]);
+      for (size_t j = 0; j < n; ++j) {
+        basis[j] = p[j][i][ch] - v0[i][ch];
+        if (kd_free[j]) basis[b_index[j]] = r[j][i][ch] - p[j][i][ch];
+      }
+      const double target = row.value[ch] - v0[i][ch];
+      for (int a = 0; a < m; ++a) {
+        atb[a] += w * basis[a] * target;
+        for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
+      }
+    }
+    std::vector<double> x(m, 0.0);
+    for (int sweep = 0; sweep < 300; ++sweep) {
+      for (int a = 0; a < m; ++a) {
+        if (!(ata[a * m + a] > 0.0)) continue;
+        double rhs = atb[a];
+        for (int b = 0; b < m; ++b) {
+          if (b != a) rhs -= ata[a * m + b] * x[b];
+        }
+        double hi = 1e3;
+        for (size_t j = 0; j < n; ++j) {
+          if (b_index[j] == a) hi = x[j];  // B_j <= A_j
+        }
+        x[a] = std::clamp(rhs / ata[a * m + a], 0.0, hi);
+      }
+    }
+    for (size_t j = 0; j < n; ++j) {
+      a_out[j][ch] = x[j];
+      if (kd_free[j]) b_out[j][ch] = x[b_index[j]];
+    }
+  }
+  for (size_t j = 0; j < n; ++j) {
+    ThreadParams& tp = c->threads[j].params;
+    for (int ch = 0; ch < 3; ++ch) {
+      tp.albedo[ch] = a_out[j][table.channels == 1 ? 0 : ch];
+    }
+    if (kd_free[j]) {
+      double a = 0.0, b = 0.0;
+      for (int ch = 0; ch < table.channels; ++ch) {
+        a += a_out[j][ch];
+        b += b_out[j][ch];
+      }
+      tp.kd = a > 0.0 ? std::clamp(b / a, 0.0, 1.0) : tp.kd;
+    }
+  }
 }
 
 }  // namespace
@@ -240,7 +346,7 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
     for (double o : layout.threads[j].offsets_deg) {
       theirs = std::max(theirs, std::abs(o));
     }
-    x[j * (ThreadParams::kSize + kWeaveSize) + ThreadParams::kSize + 1] =
+    x[j * kPerThread + ThreadParams::kSize + 1] =
         theirs > 0.0 ? mine / theirs : 1.0;
   }
   return x;
@@ -253,36 +359,58 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
                      "not transmittance");
   }
   if (init.threads.empty() || init.threads.size() > 3) {
-    throw InputError("cloth fit: the initial parameters need 1 to 3 threads, got " +
-                     std::to_string(init.threads.size()));
+    throw InputError(
+        "cloth fit: the initial parameters need 1 to 3 threads, got " +
+        std::to_string(init.threads.size()));
   }
-  auto weave = std::make_shared<Weave>();
-  weave->layout = init;
+  const size_t n = init.threads.size();
   LeastSquaresProblem lsq;
   lsq.specs = ClothSpecs(init, table.channels);
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
-  for (size_t j = 0; j < init.threads.size(); ++j) {
+  // Entry i of thread j's part of the vector (ThreadParams layout, then 7:
+  // coverage, 8: offset_scale).
+  auto is_free = [&](size_t j, int i) { return lsq.specs[j * kPerThread + i].free; };
+  constexpr int kEta = 0, kKd = 1, kGammaS = 2, kGammaV = 3, kAlbedo = 4;
+  constexpr int kCoverage = 7, kOffsetScale = 8;
+  auto weave = std::make_shared<Weave>();
+  weave->layout = init;
+  bool offsets_fixed = true;
+  std::vector<bool> eta_fixed(n), kd_free(n);
+  bool albedo_free = false;
+  for (size_t j = 0; j < n; ++j) {
+    weave->weave_blocks = weave->weave_blocks || is_free(j, kCoverage) ||
+                          is_free(j, kOffsetScale);
+    offsets_fixed = offsets_fixed && !is_free(j, kOffsetScale);
+    eta_fixed[j] = !is_free(j, kEta);
+    kd_free[j] = is_free(j, kKd);
+    for (int c = 0; c < 3; ++c) {
+      albedo_free = albedo_free || is_free(j, kAlbedo + c);
+    }
+  }
+  // Ceres blocks: [thread j params] (+ [weave j]) in vector order; the
+  // weave entries that Ceres does not see stay at their initial values.
+  for (size_t j = 0; j < n; ++j) {
     lsq.block_sizes.push_back(ThreadParams::kSize);
     lsq.block_sizes.push_back(kWeaveSize);
   }
   lsq.sigma_known = table.has_sigma;
+
   // With every offset_scale fixed the tangent samples never change: compute
-  // them once for all solves.
-  bool offsets_fixed = true;
-  for (const ParameterSpec& spec : lsq.specs) {
-    if (spec.free && NameEndsWith(spec.name, ".offset_scale")) {
-      offsets_fixed = false;
-    }
-  }
+  // them once for all starts and solves.
   std::vector<std::shared_ptr<const RowSamples>> row_samples(table.rows.size());
   if (offsets_fixed) {
     for (size_t i = 0; i < table.rows.size(); ++i) {
       row_samples[i] = std::make_shared<const RowSamples>(
-          ComputeRowSamples(init, table.rows[i]));
+          ComputeRowSamples(init, eta_fixed, table.rows[i]));
     }
   }
   lsq.add_residuals = [&](const std::vector<double*>& blocks,
                           ceres::LossFunction* loss, ceres::Problem* problem) {
+    std::vector<double*> used;
+    for (size_t j = 0; j < n; ++j) {
+      used.push_back(blocks[2 * j]);
+      if (weave->weave_blocks) used.push_back(blocks[2 * j + 1]);
+    }
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
       ceres::CostFunction* cost =
@@ -291,53 +419,45 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
                                          row_samples[i])
               : ClothResidual<3>::Create(weave, row, table.quantity,
                                          row_samples[i]);
-      problem->AddResidualBlock(cost, loss, blocks);
+      problem->AddResidualBlock(cost, loss, used);
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
                     std::vector<double>* measured) {
-    const ClothParams c = FromVector(*weave, x);
-    for (const TableRow& row : table.rows) {
-      const glm::dvec3 m = ClothValue(c, row.wi, row.wo, table.quantity);
+    const Values v = Predict(table, FromVector(init, x), row_samples);
+    for (size_t i = 0; i < table.rows.size(); ++i) {
       for (int ch = 0; ch < table.channels; ++ch) {
-        model->push_back(m[ch]);
-        measured->push_back(row.value[ch]);
+        model->push_back(v[i][ch]);
+        measured->push_back(table.rows[i].value[ch]);
       }
     }
   };
 
-  // Starts: the init, and (multi-start) variations of its widths and kd,
-  // each with closed-form albedos; ranked by cost.
-  std::vector<ClothParams> candidates = {init};
+  // Starts: the init, and (multi-start) each thread's two widths scaled by
+  // 0.5, 1 or 2 (all combinations); each with the linear parameters (albedo
+  // and kd) solved in closed form; ranked by cost.
+  std::vector<ClothParams> candidates;
+  int combos = 1;
   if (options.multi_start) {
-    for (double gamma_factor : {1.0, 0.5, 2.0}) {
-      for (double kd : {-1.0, 0.1, 0.6}) {
-        ClothParams c = init;
-        for (size_t j = 0; j < c.threads.size(); ++j) {
-          ThreadParams& p = c.threads[j].params;
-          const std::string prefix = "threads[" + std::to_string(j) + "].";
-          auto is_free = [&](const std::string& name) {
-            for (const ParameterSpec& s : lsq.specs) {
-              if (s.name == prefix + name) return s.free;
-            }
-            return false;
-          };
-          if (is_free("gamma_s_deg")) {
-            p.gamma_s_deg = std::clamp(p.gamma_s_deg * gamma_factor, 0.2, 90.0);
-          }
-          if (is_free("gamma_v_deg")) {
-            p.gamma_v_deg = std::clamp(p.gamma_v_deg * gamma_factor, 0.2, 90.0);
-          }
-          if (kd >= 0.0 && is_free("kd")) p.kd = kd;
-        }
-        bool albedo_free = false;
-        for (const ParameterSpec& s : lsq.specs) {
-          albedo_free = albedo_free || (s.free && s.name.find("albedo") != std::string::npos);
-        }
-        if (albedo_free) SolveAlbedos(table, &c);
-        candidates.push_back(c);
+    for (size_t j = 0; j < n; ++j) combos *= 3;
+  }
+  const double kFactors[] = {1.0, 0.5, 2.0};
+  for (int combo = 0; combo < combos; ++combo) {
+    ClothParams c = init;
+    int code = combo;
+    for (size_t j = 0; j < n; ++j) {
+      const double f = kFactors[code % 3];
+      code /= 3;
+      ThreadParams& p = c.threads[j].params;
+      if (is_free(j, kGammaS)) {
+        p.gamma_s_deg = std::clamp(p.gamma_s_deg * f, 0.2, 90.0);
+      }
+      if (is_free(j, kGammaV)) {
+        p.gamma_v_deg = std::clamp(p.gamma_v_deg * f, 0.2, 90.0);
       }
     }
+    if (albedo_free) SolveLinearParameters(table, row_samples, kd_free, &c);
+    candidates.push_back(c);
   }
   std::vector<std::pair<double, std::vector<double>>> ranked;
   for (const ClothParams& c : candidates) {
@@ -346,14 +466,14 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  const size_t n = std::clamp<size_t>(options.solve_starts, 1, ranked.size());
+  const size_t solves = std::clamp<size_t>(options.solve_starts, 1, ranked.size());
   std::vector<std::vector<double>> starts;
-  for (size_t i = 0; i < n; ++i) starts.push_back(ranked[i].second);
+  for (size_t i = 0; i < solves; ++i) starts.push_back(ranked[i].second);
 
   ClothFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
-  result.params = FromVector(*weave, x);
+  result.params = FromVector(init, x);
   if (table.channels == 1) {
     for (ClothThread& th : result.params.threads) {
       th.params.albedo = glm::dvec3(th.params.albedo.x);

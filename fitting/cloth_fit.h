@@ -21,10 +21,12 @@ struct ClothFitOptions {
   // applies to every thread.
   std::vector<std::string> fix;
   std::vector<std::string> free_only;
-  // Multi-start around the initial parameters: gammas x {1, 0.5, 2} and
-  // kd in {init, 0.1, 0.6}; ranked by cost, solved from the best few.
+  // Multi-start around the initial parameters: each thread's two widths
+  // scaled by 0.5, 1 or 2 (3^threads combinations), each with albedo and kd
+  // solved in closed form (the model is linear in A and A kd); ranked by
+  // cost, the solver runs from the best `solve_starts`.
   bool multi_start = true;
-  int solve_starts = 2;
+  int solve_starts = 1;
 };
 
 struct ClothFitResult {

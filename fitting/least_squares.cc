@@ -268,8 +268,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     solver_options.linear_solver_type = ceres::DENSE_QR;
     solver_options.max_num_iterations = options.max_iterations;
     solver_options.num_threads = options.num_threads;
-    solver_options.function_tolerance = 1e-12;
-    solver_options.parameter_tolerance = 1e-12;
+    solver_options.function_tolerance = 1e-10;
+    solver_options.parameter_tolerance = 1e-10;
     solver_options.gradient_tolerance = 1e-14;
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, built.problem.get(), &summary);

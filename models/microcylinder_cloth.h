@@ -100,7 +100,8 @@ struct ClothThreadT {
   // <= 1 (the rest is gaps). Eq. 12, Table 3 ("a").
   T coverage = T(0.33);
   // Tangent offsets of the samples C_j; degrees, [-90, 90]. Eq. 11, Table 3.
-  std::vector<T> offsets_deg = {T(-25.0), T(25.0)};
+  // No default: a weave's samples always come from a file or a preset.
+  std::vector<T> offsets_deg;
   // When the file gave a tangent curve, the curve (offsets_deg holds its
   // samples); curve.samples == 0 means the samples were given explicitly.
   TangentCurve curve;
@@ -236,10 +237,12 @@ TangentSample<G> ComputeTangentSample(ThreadDirection direction,
 }
 
 // rho from the samples of every thread (eq. 11-13). `samples.Count(j)` and
-// `samples.Get(j, k)` give thread j's samples (a TangentSample<G>); cloth
-// gives the coverages and scattering parameters (its offsets are not read).
-// ClothRho computes the samples on the fly; a fit with fixed directions and
-// offsets passes samples it computed once.
+// `samples.Get(j, k)` give thread j's samples (a TangentSample<G>), and
+// `samples.Bsdf(j, k, sample, params)` their thread BSDF (ThreadBsdf, or the
+// same with a Fresnel term computed once); cloth gives the coverages and
+// scattering parameters (its offsets are not read). ClothRho computes the
+// samples on the fly; a fit with fixed directions and offsets passes samples
+// it computed once.
 template <typename T, typename G, typename Samples>
 Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
                             const Samples& samples, const G& wi_z) {
@@ -259,7 +262,7 @@ Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
       if (!sample.valid) continue;
       w += sample.reweight;
       if (sample.weight > G(0.0)) {
-        s += ThreadBsdf(sample.geometry, th.params) * T(sample.weight);
+        s += samples.Bsdf(j, k, sample, th.params) * T(sample.weight);
       }
     }
     const T share = th.coverage * T(1.0 / count);
@@ -286,6 +289,10 @@ Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
     TangentSample<T> Get(size_t j, int k) const {
       const ClothThreadT<T>& th = cloth.threads[j];
       return ComputeTangentSample(th.direction, th.offsets_deg[k], wi, wo);
+    }
+    Vec3<T> Bsdf(size_t, int, const TangentSample<T>& sample,
+                 const ThreadParamsT<T>& params) const {
+      return ThreadBsdf(sample.geometry, params);
     }
   };
   return ClothRhoFromSamples(cloth, OnTheFly{cloth, wi, wo}, wi.z);

@@ -217,28 +217,39 @@ ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
   return g;
 }
 
-// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4). The
-// geometry's scalar type G may differ from the parameters' T: a fit with
-// fixed directions computes the geometry once in double and evaluates only
-// the parameter-dependent part with Jets.
+// The Fresnel reflectance of eq. 3 for a valid geometry: the dielectric
+// Fresnel at cos = cos(theta_d) cos(phi_d / 2).
 template <typename T, typename G>
-Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
+T ThreadFresnel(const ThreadGeometry<G>& g, const T& eta) {
   using std::sqrt;
+  return FresnelDielectric(T(sqrt(g.cos2_theta_d) * g.cos_half_phi_d), eta);
+}
+
+// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4), given
+// the Fresnel reflectance fr = ThreadFresnel(g, p.eta). The geometry's
+// scalar type G and fr's type F may differ from the parameters' T: a fit
+// with fixed directions (and fixed eta) computes them once in double and
+// evaluates only the parameter-dependent part with Jets.
+template <typename T, typename G, typename F>
+Vec3<T> ThreadBsdfGivenFresnel(const ThreadGeometry<G>& g, const F& fr,
+                               const ThreadParamsT<T>& p) {
   const T gamma_s = Radians(p.gamma_s_deg);
   const T gamma_v = Radians(p.gamma_v_deg);
   const T theta_h(g.theta_h);
-  const G cos_half_phi_d = g.cos_half_phi_d;
-  const T fr =
-      FresnelDielectric(T(sqrt(g.cos2_theta_d) * cos_half_phi_d), p.eta);
-  const T f_rs = fr * T(cos_half_phi_d) * NormalizedGaussian(gamma_s, theta_h);
-  const T volume = Sqr(T(1.0) - fr) *
+  const T f_rs =
+      T(fr * g.cos_half_phi_d) * NormalizedGaussian(gamma_s, theta_h);
+  const T volume = T(Sqr(F(1.0) - fr) / (g.cos_theta_i + g.cos_theta_o)) *
                    ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, theta_h) +
-                    p.kd) /
-                   T(g.cos_theta_i + g.cos_theta_o);
-  const T inv_cos2 = T(1.0 / g.cos2_theta_d);
+                    p.kd);
+  const G inv_cos2 = G(1.0) / g.cos2_theta_d;
   return Vec3<T>(f_rs + volume * p.albedo.x, f_rs + volume * p.albedo.y,
                  f_rs + volume * p.albedo.z) *
-         inv_cos2;
+         T(inv_cos2);
+}
+
+template <typename T, typename G>
+Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
+  return ThreadBsdfGivenFresnel(g, ThreadFresnel(g, p.eta), p);
 }
 
 // The thread BSDF in the thread frame of SPEC §2 (tangent +x, normal +z):
