@@ -3,7 +3,10 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include <nlohmann/json.hpp>
+
 #include "fitting/cloth_fit.h"
+#include "fitting/model_selection.h"
 #include "fitting/thread_fit.h"
 #include "io/input_error.h"
 #include "models/presets.h"
@@ -48,15 +51,23 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
 }
 
 // Prints the summary, writes the result when usable, and gives the status.
+// `selection` (may be null) is the --tolerance report, added to "fit".
 int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
-           const std::vector<double>& truth) {
+           const std::vector<double>& truth, const SelectionReport* selection) {
+  if (selection) std::cout << SelectionReportText(*selection) << "\n";
   std::cout << FitReportText(report, truth);
   if (!report.usable) {
     std::cerr << "error: the fit did not reach a usable solution: "
               << report.message << "; nothing written\n";
     return 1;
   }
-  WriteParamFile(ParamFile{fitted, FitReportJson(report)}, args.Get("out"));
+  std::string fit_json = FitReportJson(report);
+  if (selection) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
+    j["selection"] = nlohmann::ordered_json::parse(SelectionReportJson(*selection));
+    fit_json = j.dump();
+  }
+  WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
   std::cout << "wrote " << args.Get("out") << "\n";
   if (!report.identifiability.empty()) {
     std::cerr << "warning: " << report.identifiability
@@ -99,6 +110,13 @@ int RunFit(int argc, char** argv) {
               "multi-start: solve from the N best-ranked starting points "
               "(default: 2 thread, 1 cloth)");
   args.Option("truth", "P.json", "print these true values beside the fit");
+  args.Flag("generic-start",
+            "cloth: keep only the weave of --init/--preset (directions, "
+            "coverages, offsets, eta) and start the threads from generic "
+            "values");
+  args.Option("tolerance", "REL",
+              "pick the simplest configuration whose relative rms error is "
+              "at most REL (docs/fitting.md)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
@@ -120,6 +138,11 @@ int RunFit(int argc, char** argv) {
     const long n = args.GetInt("starts");
     if (n < 1 || n > 100) args.Fail("option '--starts': must be in [1, 100]");
     starts = static_cast<int>(n);
+  }
+  std::optional<double> tolerance;
+  if (args.Has("tolerance")) {
+    tolerance = args.GetDouble("tolerance");
+    if (!(*tolerance > 0.0)) args.Fail("option '--tolerance': must be > 0");
   }
   std::optional<ParamFile> truth;
   if (args.Has("truth")) truth = ReadParamFile(args.Get("truth"));
@@ -143,15 +166,23 @@ int RunFit(int argc, char** argv) {
       truth_values.resize(ThreadParams::kSize);
       ToArray(std::get<ThreadParams>(truth->params), truth_values.data());
     }
+    if (tolerance) {
+      const ThreadSelection sel = SelectThreadModel(table, options, *tolerance);
+      return Finish(args, sel.fit.params, sel.fit.report, truth_values,
+                    &sel.report);
+    }
     const ThreadFitResult r = FitThread(table, options);
-    return Finish(args, r.params, r.report, truth_values);
+    return Finish(args, r.params, r.report, truth_values, nullptr);
   }
   if (model == "cloth") {
     const ParamFile init = LoadModelOption(args, "init");
     if (!std::holds_alternative<ClothParams>(init.params)) {
       args.Fail("expected cloth initial parameters");
     }
-    const ClothParams& layout = std::get<ClothParams>(init.params);
+    const ClothParams layout =
+        args.Has("generic-start")
+            ? GenericClothStart(std::get<ClothParams>(init.params))
+            : std::get<ClothParams>(init.params);
     ClothFitOptions options;
     options.solver = solver;
     options.fix = fix;
@@ -162,8 +193,15 @@ int RunFit(int argc, char** argv) {
         std::get<ClothParams>(truth->params).threads.size() == layout.threads.size()) {
       truth_values = ClothParameterValues(std::get<ClothParams>(truth->params), layout);
     }
+    if (tolerance) {
+      const ClothSelection sel =
+          SelectClothModel(table, layout, options, *tolerance);
+      // The chosen weave may have fewer samples: no per-entry truth column.
+      return Finish(args, sel.fit.params, sel.fit.report, truth_values,
+                    &sel.report);
+    }
     const ClothFitResult r = FitCloth(table, layout, options);
-    return Finish(args, r.params, r.report, truth_values);
+    return Finish(args, r.params, r.report, truth_values, nullptr);
   }
   args.Fail("option '--model': expected thread or cloth, got '" + model + "'");
 }

@@ -30,6 +30,7 @@ bool EndsWith(const std::string& name, const std::string& suffix) {
 struct Weave {
   ClothParams layout;        // directions, base offsets, fixed values
   bool weave_blocks = false;  // coverage/offset_scale blocks passed to Ceres
+  bool shared_albedo = false;  // every thread uses thread 0's albedo
 };
 
 // The tangent samples of one row, computed once when the directions and the
@@ -87,6 +88,9 @@ ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
     ClothThreadT<T>& th = c.threads[j];
     th.direction = base.direction;
     th.params = ThreadParamsFromArray(blocks[stride * j]);
+    if (weave.shared_albedo) {
+      th.params.albedo = Vec3<T>(blocks[0][4], blocks[0][5], blocks[0][6]);
+    }
     const T* w = weave.weave_blocks ? blocks[stride * j + 1] : nullptr;
     th.coverage = w ? w[0] : T(base.coverage);
     if (with_offsets) {
@@ -218,11 +222,15 @@ std::vector<double> ToVector(const ClothParams& c) {
   return x;
 }
 
-ClothParams FromVector(const ClothParams& layout, const std::vector<double>& x) {
+ClothParams FromVector(const ClothParams& layout, const std::vector<double>& x,
+                       bool shared_albedo) {
   ClothParams c = layout;
   for (size_t j = 0; j < c.threads.size(); ++j) {
     const double* t = x.data() + j * kPerThread;
     c.threads[j].params = ThreadParamsFromArray(t);
+    if (shared_albedo) {
+      c.threads[j].params.albedo = glm::dvec3(x[4], x[5], x[6]);
+    }
     c.threads[j].coverage = t[ThreadParams::kSize];
     for (double& o : c.threads[j].offsets_deg) o *= t[ThreadParams::kSize + 1];
   }
@@ -248,14 +256,14 @@ Values Predict(const MeasurementTable& table, const ClothParams& c,
 // The model is linear in each thread's albedo A and in B = A kd:
 //   model = base + sum_j A_j P_j + B_j (R_j - P_j),
 // P_j = model(A_j = 1, kd_j = 0) - base, R_j = model(A_j = 1, kd_j = 1) -
-// base, base = model(all A = 0). Per channel, solves the weighted least
-// squares for A_j >= 0 (and 0 <= B_j <= A_j where kd_j is free) by projected
-// Gauss-Seidel, then sets kd_j = sum_c B_jc / sum_c A_jc. Where kd_j is
-// fixed, B_j = kd_j A_j.
+// base, base = model(all A = 0); with kd_j fixed, P_j is taken at that kd_j
+// and B_j drops out. With a shared albedo, A_j = A_0 for every j. Per
+// channel, solves the weighted least squares for A >= 0 and 0 <= B_j <= A_j
+// by projected Gauss-Seidel, then sets kd_j = sum_c B_jc / sum_c A_jc.
 void SolveLinearParameters(
     const MeasurementTable& table,
     const std::vector<std::shared_ptr<const RowSamples>>& samples,
-    const std::vector<bool>& kd_free, ClothParams* c) {
+    const std::vector<bool>& kd_free, bool shared_albedo, ClothParams* c) {
   const size_t n = c->threads.size();
   ClothParams base = *c;
   for (ClothThread& th : base.threads) th.params.albedo = glm::dvec3(0.0);
@@ -271,9 +279,12 @@ void SolveLinearParameters(
       r[j] = Predict(table, one, samples);
     }
   }
-  // Unknowns per channel: A_0..A_{n-1}, then B_j for threads with kd free.
-  std::vector<int> b_index(n, -1);
-  int m = static_cast<int>(n);
+  // Unknowns per channel: the albedos (one, or one per thread), then B_j
+  // for the threads with kd free.
+  std::vector<int> a_index(n), b_index(n, -1);
+  int m = 0;
+  for (size_t j = 0; j < n; ++j) a_index[j] = shared_albedo ? 0 : m++;
+  if (shared_albedo) m = 1;
   for (size_t j = 0; j < n; ++j) {
     if (kd_free[j]) b_index[j] = m++;
   }
@@ -283,8 +294,9 @@ void SolveLinearParameters(
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
       const double w = row.weight / (row.sigma[ch] * row.sigma[ch]);
+      std::fill(basis.begin(), basis.end(), 0.0);
       for (size_t j = 0; j < n; ++j) {
-        basis[j] = p[j][i][ch] - v0[i][ch];
+        basis[a_index[j]] += p[j][i][ch] - v0[i][ch];
         if (kd_free[j]) basis[b_index[j]] = r[j][i][ch] - p[j][i][ch];
       }
       const double target = row.value[ch] - v0[i][ch];
@@ -303,13 +315,13 @@ void SolveLinearParameters(
         }
         double hi = 1e3;
         for (size_t j = 0; j < n; ++j) {
-          if (b_index[j] == a) hi = x[j];  // B_j <= A_j
+          if (b_index[j] == a) hi = x[a_index[j]];  // B_j <= A_j
         }
         x[a] = std::clamp(rhs / ata[a * m + a], 0.0, hi);
       }
     }
     for (size_t j = 0; j < n; ++j) {
-      a_out[j][ch] = x[j];
+      a_out[j][ch] = x[a_index[j]];
       if (kd_free[j]) b_out[j][ch] = x[b_index[j]];
     }
   }
@@ -330,6 +342,17 @@ void SolveLinearParameters(
 }
 
 }  // namespace
+
+ClothParams GenericClothStart(const ClothParams& weave) {
+  ClothParams c = weave;
+  for (ClothThread& th : c.threads) {
+    th.params.kd = 0.3;
+    th.params.gamma_s_deg = 10.0;
+    th.params.gamma_v_deg = 20.0;
+    th.params.albedo = glm::dvec3(0.1);
+  }
+  return c;
+}
 
 std::vector<std::string> ClothParameterNames(const ClothParams& layout) {
   std::vector<std::string> names;
@@ -374,6 +397,12 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   constexpr int kCoverage = 7, kOffsetScale = 8;
   auto weave = std::make_shared<Weave>();
   weave->layout = init;
+  weave->shared_albedo = options.shared_albedo && n > 1;
+  if (weave->shared_albedo) {  // threads j > 0 take thread 0's albedo
+    for (size_t j = 1; j < n; ++j) {
+      for (int c = 0; c < 3; ++c) lsq.specs[j * kPerThread + 4 + c].free = false;
+    }
+  }
   bool offsets_fixed = true;
   std::vector<bool> eta_fixed(n), kd_free(n);
   bool albedo_free = false;
@@ -424,7 +453,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
                     std::vector<double>* measured) {
-    const Values v = Predict(table, FromVector(init, x), row_samples);
+    const Values v =
+        Predict(table, FromVector(init, x, weave->shared_albedo), row_samples);
     for (size_t i = 0; i < table.rows.size(); ++i) {
       for (int ch = 0; ch < table.channels; ++ch) {
         model->push_back(v[i][ch]);
@@ -456,7 +486,10 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
         p.gamma_v_deg = std::clamp(p.gamma_v_deg * f, 0.2, 90.0);
       }
     }
-    if (albedo_free) SolveLinearParameters(table, row_samples, kd_free, &c);
+    if (albedo_free) {
+      SolveLinearParameters(table, row_samples, kd_free, weave->shared_albedo,
+                            &c);
+    }
     candidates.push_back(c);
   }
   std::vector<std::pair<double, std::vector<double>>> ranked;
@@ -473,7 +506,16 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   ClothFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
-  result.params = FromVector(init, x);
+  result.params = FromVector(init, x, weave->shared_albedo);
+  if (weave->shared_albedo) {  // report the tied albedos at their value
+    for (ParameterReport& p : result.report.parameters) {
+      for (const char* channel : {"albedo_r", "albedo_g", "albedo_b"}) {
+        if (EndsWith(p.name, std::string(".") + channel)) {
+          p.value = x[4 + (channel[7] == 'r' ? 0 : channel[7] == 'g' ? 1 : 2)];
+        }
+      }
+    }
+  }
   if (table.channels == 1) {
     for (ClothThread& th : result.params.threads) {
       th.params.albedo = glm::dvec3(th.params.albedo.x);

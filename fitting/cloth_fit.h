@@ -27,12 +27,20 @@ struct ClothFitOptions {
   // cost, the solver runs from the best `solve_starts`.
   bool multi_start = true;
   int solve_starts = 1;
+  // Every thread shares thread 0's albedo (one colour for the fabric).
+  bool shared_albedo = false;
 };
 
 struct ClothFitResult {
   ClothParams params;
   FitReport report;
 };
+
+// The default start for a weave whose threads are unknown: the weave's
+// directions, coverages, tangent offsets and eta, with every thread at
+// kd 0.3, gamma_s_deg 10, gamma_v_deg 20, albedo 0.1 (the fit then solves
+// albedo and kd in closed form for each of its starts).
+ClothParams GenericClothStart(const ClothParams& weave);
 
 // Names of the free-able entries, in parameter-vector order.
 std::vector<std::string> ClothParameterNames(const ClothParams& layout);

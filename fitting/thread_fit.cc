@@ -129,7 +129,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     starts.push_back(as_array(*options.init));
   } else {
     std::vector<std::pair<double, std::vector<double>>> ranked;
-    for (ThreadParams p : DefaultThreadStarts()) {
+    for (ThreadParams p :
+         options.grid.empty() ? DefaultThreadStarts() : options.grid) {
       SolveAlbedo(table, &p);
       const std::vector<double> x = as_array(p);
       ranked.emplace_back(EvaluateCost(lsq, x), x);

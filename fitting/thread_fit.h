@@ -15,8 +15,10 @@ namespace clothfit {
 
 struct ThreadFitOptions {
   SolverOptions solver;
-  // Start from here (one start); without it, the default multi-start grid.
+  // Start from here (one start); without it, the multi-start grid `grid`,
+  // or DefaultThreadStarts() when that is empty.
   std::optional<ThreadParams> init;
+  std::vector<ThreadParams> grid;
   // Parameter names (ThreadParamNames(), or "albedo" for all three) held
   // at their initial value; `free_only`, when not empty, frees only these.
   std::vector<std::string> fix;

@@ -1,0 +1,65 @@
+// "Model no more than the data need" (issue 3): fits a ladder of simpler
+// configurations and keeps the simplest whose relative RMS error meets a
+// tolerance, reporting every candidate tried with its error and BIC.
+//
+// Cloth candidates, simplest first: fewer tangent samples T (threads with
+// a tangent curve are resampled at T = 1, 2, 4, ... up to their sample
+// count), kd fixed to 0 or 1 for every thread, one albedo shared by all
+// threads; complexity = number of free parameters, then T. Thread
+// candidates: kd fixed to 0, to 1, or free. Candidates are fitted in order
+// of complexity and the search stops at the first that meets the
+// tolerance (later ones are more complex); none meeting it, the full model
+// is kept and the report says so.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fitting/cloth_fit.h"
+#include "fitting/thread_fit.h"
+
+namespace clothfit {
+
+struct CandidateReport {
+  std::string description;  // e.g. "T=2, kd=0, shared albedo"
+  int free_parameters = 0;
+  int samples = 0;          // total tangent samples (cloth)
+  double relative_rms = 0.0;
+  // Bayesian information criterion, chi2 + k ln(n) with sigma given,
+  // n ln(RSS / n) + k ln(n) otherwise; lower is better.
+  double bic = 0.0;
+  bool usable = false;
+  bool meets_tolerance = false;
+};
+
+struct SelectionReport {
+  double tolerance = 0.0;
+  std::vector<CandidateReport> candidates;  // in the order tried
+  int chosen = -1;                          // index into candidates
+  std::string reason;
+};
+
+std::string SelectionReportText(const SelectionReport& report);
+std::string SelectionReportJson(const SelectionReport& report);
+
+struct ClothSelection {
+  ClothFitResult fit;
+  ClothParams params;  // the chosen configuration (its weave may differ)
+  SelectionReport report;
+};
+
+ClothSelection SelectClothModel(const MeasurementTable& table,
+                                const ClothParams& init,
+                                const ClothFitOptions& options,
+                                double tolerance);
+
+struct ThreadSelection {
+  ThreadFitResult fit;
+  SelectionReport report;
+};
+
+ThreadSelection SelectThreadModel(const MeasurementTable& table,
+                                  const ThreadFitOptions& options,
+                                  double tolerance);
+
+}  // namespace clothfit
