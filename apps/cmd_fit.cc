@@ -117,6 +117,9 @@ int RunFit(int argc, char** argv) {
   args.Option("tolerance", "REL",
               "pick the simplest configuration whose relative rms error is "
               "at most REL (docs/fitting.md)");
+  args.Flag("fit-scale",
+            "data on an arbitrary scale: also fit a factor on the model "
+            "(reported as 'scale')");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
@@ -152,6 +155,7 @@ int RunFit(int argc, char** argv) {
     options.solver = solver;
     options.fix = fix;
     options.free_only = free_only;
+    options.fit_scale = args.Has("fit-scale");
     if (starts > 0) options.solve_starts = starts;
     if (args.Has("preset")) args.Fail("--preset gives cloth parameters; use --init");
     if (args.Has("init")) {
@@ -187,6 +191,7 @@ int RunFit(int argc, char** argv) {
     options.solver = solver;
     options.fix = fix;
     options.free_only = free_only;
+    options.fit_scale = args.Has("fit-scale");
     if (starts > 0) options.solve_starts = starts;
     std::vector<double> truth_values;
     if (truth && std::holds_alternative<ClothParams>(truth->params) &&

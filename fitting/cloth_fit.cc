@@ -31,6 +31,7 @@ struct Weave {
   ClothParams layout;        // directions, base offsets, fixed values
   bool weave_blocks = false;  // coverage/offset_scale blocks passed to Ceres
   bool shared_albedo = false;  // every thread uses thread 0's albedo
+  bool fit_scale = false;      // a last block [scale] multiplies the model
 };
 
 // The tangent samples of one row, computed once when the directions and the
@@ -103,9 +104,10 @@ ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
   return c;
 }
 
-// residual_c = (model_c - measured_c) sqrt(weight) / sigma_c, c < kChannels.
-// Ceres passes one block per thread (two with weave blocks), 1 to 3 threads:
-// one call operator per block count.
+// residual_c = (s model_c - measured_c) sqrt(weight) / sigma_c, c <
+// kChannels; s = 1 or, with fit_scale, a last block [s]. Ceres passes one
+// block per thread (two with weave blocks), 1 to 3 threads, (+ the scale):
+// one call operator per block count, 1 to 7.
 template <int kChannels>
 struct ClothResidual {
   std::shared_ptr<const Weave> weave;
@@ -126,8 +128,12 @@ struct ClothResidual {
       model = ClothValue(ClothFromBlocks(*weave, blocks, true), Cast<T>(wi),
                          Cast<T>(wo), quantity);
     }
+    const size_t n = weave->layout.threads.size();
+    const T s = weave->fit_scale
+                    ? blocks[n * (weave->weave_blocks ? 2 : 1)][0]
+                    : T(1.0);
     for (int c = 0; c < kChannels; ++c) {
-      residual[c] = (model[c] - T(value[c])) * T(scale[c]);
+      residual[c] = (s * model[c] - T(value[c])) * T(scale[c]);
     }
     return true;
   }
@@ -154,9 +160,28 @@ struct ClothResidual {
   }
   template <typename T>
   bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
+                  const T* b4, T* r) const {
+    const T* const b[] = {b0, b1, b2, b3, b4};
+    return Residual(b, r);
+  }
+  template <typename T>
+  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
                   const T* b4, const T* b5, T* r) const {
     const T* const b[] = {b0, b1, b2, b3, b4, b5};
     return Residual(b, r);
+  }
+  template <typename T>
+  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
+                  const T* b4, const T* b5, const T* b6, T* r) const {
+    const T* const b[] = {b0, b1, b2, b3, b4, b5, b6};
+    return Residual(b, r);
+  }
+
+  // AutoDiffCostFunction over the blocks (sizes...).
+  template <int... kSizes>
+  static ceres::CostFunction* Make(ClothResidual* f) {
+    return new ceres::AutoDiffCostFunction<ClothResidual, kChannels,
+                                           kSizes...>(f);
   }
 
   static ceres::CostFunction* Create(std::shared_ptr<const Weave> weave,
@@ -164,30 +189,29 @@ struct ClothResidual {
                                      std::shared_ptr<const RowSamples> samples) {
     constexpr int P = ThreadParams::kSize, W = kWeaveSize;
     const size_t n = weave->layout.threads.size();
-    const bool w = weave->weave_blocks;
+    const int layout = static_cast<int>(n) * 4 + (weave->weave_blocks ? 2 : 0) +
+                       (weave->fit_scale ? 1 : 0);
     auto* f = new ClothResidual{std::move(weave), row.wi, row.wo, row.value,
                                 std::sqrt(row.weight) / row.sigma, quantity,
                                 std::move(samples)};
-    using ceres::AutoDiffCostFunction;
-    if (n == 1) {
-      if (w) return new AutoDiffCostFunction<ClothResidual, kChannels, P, W>(f);
-      return new AutoDiffCostFunction<ClothResidual, kChannels, P>(f);
+    switch (layout) {  // threads * 4 + weave blocks * 2 + scale
+      case 4: return Make<P>(f);
+      case 5: return Make<P, 1>(f);
+      case 6: return Make<P, W>(f);
+      case 7: return Make<P, W, 1>(f);
+      case 8: return Make<P, P>(f);
+      case 9: return Make<P, P, 1>(f);
+      case 10: return Make<P, W, P, W>(f);
+      case 11: return Make<P, W, P, W, 1>(f);
+      case 12: return Make<P, P, P>(f);
+      case 13: return Make<P, P, P, 1>(f);
+      case 14: return Make<P, W, P, W, P, W>(f);
+      default: return Make<P, W, P, W, P, W, 1>(f);
     }
-    if (n == 2) {
-      if (w) {
-        return new AutoDiffCostFunction<ClothResidual, kChannels, P, W, P, W>(f);
-      }
-      return new AutoDiffCostFunction<ClothResidual, kChannels, P, P>(f);
-    }
-    if (w) {
-      return new AutoDiffCostFunction<ClothResidual, kChannels, P, W, P, W, P,
-                                      W>(f);
-    }
-    return new AutoDiffCostFunction<ClothResidual, kChannels, P, P, P>(f);
   }
 };
 
-std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout, int channels) {
+std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
   std::vector<ParameterSpec> specs;
   const char* const* names = ThreadParamNames();
   const double lower[] = {1.01, 0.0, 0.2, 0.2, 0.0, 0.0, 0.0};
@@ -196,7 +220,7 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout, int channels) {
     const std::string prefix = "threads[" + std::to_string(j) + "].";
     for (int i = 0; i < ThreadParams::kSize; ++i) {
       // eta is fixed by default: the data rarely separate it from kd/albedo.
-      const bool free = i != 0 && !(channels == 1 && i >= 5);
+      const bool free = i != 0;
       specs.push_back({prefix + names[i], lower[i], upper[i], free});
     }
     double largest = 0.0;
@@ -207,9 +231,11 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout, int channels) {
     specs.push_back({prefix + "offset_scale", 0.0,
                      largest > 0.0 ? 90.0 / largest : 1.0, false});
   }
+  specs.push_back({"scale", 1e-6, 1e6, false});
   return specs;
 }
 
+// Per thread kPerThread entries, then the scale (1).
 std::vector<double> ToVector(const ClothParams& c) {
   std::vector<double> x;
   for (const ClothThread& th : c.threads) {
@@ -219,6 +245,7 @@ std::vector<double> ToVector(const ClothParams& c) {
     x.push_back(th.coverage);
     x.push_back(1.0);  // offset_scale relative to the layout
   }
+  x.push_back(1.0);  // scale
   return x;
 }
 
@@ -260,10 +287,16 @@ Values Predict(const MeasurementTable& table, const ClothParams& c,
 // and B_j drops out. With a shared albedo, A_j = A_0 for every j. Per
 // channel, solves the weighted least squares for A >= 0 and 0 <= B_j <= A_j
 // by projected Gauss-Seidel, then sets kd_j = sum_c B_jc / sum_c A_jc.
+//
+// With a free scale s (scale != null): s model = s base + sum (s A_j) P_j +
+// (s B_j) (R_j - P_j) is linear in (s, s A, s B); each channel is solved
+// with its own s, *scale receives their mean, and the albedos and B are
+// divided by it.
 void SolveLinearParameters(
     const MeasurementTable& table,
     const std::vector<std::shared_ptr<const RowSamples>>& samples,
-    const std::vector<bool>& kd_free, bool shared_albedo, ClothParams* c) {
+    const std::vector<bool>& kd_free, bool shared_albedo, ClothParams* c,
+    double* scale) {
   const size_t n = c->threads.size();
   ClothParams base = *c;
   for (ClothThread& th : base.threads) th.params.albedo = glm::dvec3(0.0);
@@ -288,6 +321,8 @@ void SolveLinearParameters(
   for (size_t j = 0; j < n; ++j) {
     if (kd_free[j]) b_index[j] = m++;
   }
+  const int s_index = scale ? m++ : -1;
+  double scale_sum = 0.0;
   std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
   for (int ch = 0; ch < table.channels; ++ch) {
     std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
@@ -299,13 +334,19 @@ void SolveLinearParameters(
         basis[a_index[j]] += p[j][i][ch] - v0[i][ch];
         if (kd_free[j]) basis[b_index[j]] = r[j][i][ch] - p[j][i][ch];
       }
-      const double target = row.value[ch] - v0[i][ch];
+      double target = row.value[ch];
+      if (scale) {
+        basis[s_index] = v0[i][ch];
+      } else {
+        target -= v0[i][ch];
+      }
       for (int a = 0; a < m; ++a) {
         atb[a] += w * basis[a] * target;
         for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
       }
     }
     std::vector<double> x(m, 0.0);
+    if (scale) x[s_index] = 1.0;
     for (int sweep = 0; sweep < 300; ++sweep) {
       for (int a = 0; a < m; ++a) {
         if (!(ata[a * m + a] > 0.0)) continue;
@@ -313,22 +354,26 @@ void SolveLinearParameters(
         for (int b = 0; b < m; ++b) {
           if (b != a) rhs -= ata[a * m + b] * x[b];
         }
-        double hi = 1e3;
+        double lo = 0.0, hi = 1e6;
         for (size_t j = 0; j < n; ++j) {
           if (b_index[j] == a) hi = x[a_index[j]];  // B_j <= A_j
         }
-        x[a] = std::clamp(rhs / ata[a * m + a], 0.0, hi);
+        if (a == s_index) lo = 1e-6;
+        x[a] = std::clamp(rhs / ata[a * m + a], lo, hi);
       }
     }
+    const double s = scale ? x[s_index] : 1.0;
+    scale_sum += s;
     for (size_t j = 0; j < n; ++j) {
-      a_out[j][ch] = x[a_index[j]];
-      if (kd_free[j]) b_out[j][ch] = x[b_index[j]];
+      a_out[j][ch] = x[a_index[j]] / s;
+      if (kd_free[j]) b_out[j][ch] = x[b_index[j]] / s;
     }
   }
+  if (scale) *scale = scale_sum / table.channels;
   for (size_t j = 0; j < n; ++j) {
     ThreadParams& tp = c->threads[j].params;
     for (int ch = 0; ch < 3; ++ch) {
-      tp.albedo[ch] = a_out[j][table.channels == 1 ? 0 : ch];
+      tp.albedo[ch] = std::min(a_out[j][table.channels == 1 ? 0 : ch], 1e3);
     }
     if (kd_free[j]) {
       double a = 0.0, b = 0.0;
@@ -356,7 +401,7 @@ ClothParams GenericClothStart(const ClothParams& weave) {
 
 std::vector<std::string> ClothParameterNames(const ClothParams& layout) {
   std::vector<std::string> names;
-  for (const ParameterSpec& s : ClothSpecs(layout, 3)) names.push_back(s.name);
+  for (const ParameterSpec& s : ClothSpecs(layout)) names.push_back(s.name);
   return names;
 }
 
@@ -388,8 +433,14 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   const size_t n = init.threads.size();
   LeastSquaresProblem lsq;
-  lsq.specs = ClothSpecs(init, table.channels);
+  lsq.specs = ClothSpecs(init);
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
+  if (table.channels == 1) {  // one channel: albedo_g, albedo_b follow r
+    for (size_t j = 0; j < init.threads.size(); ++j) {
+      lsq.specs[j * kPerThread + 5].free = false;
+      lsq.specs[j * kPerThread + 6].free = false;
+    }
+  }
   // Entry i of thread j's part of the vector (ThreadParams layout, then 7:
   // coverage, 8: offset_scale).
   auto is_free = [&](size_t j, int i) { return lsq.specs[j * kPerThread + i].free; };
@@ -422,6 +473,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     lsq.block_sizes.push_back(ThreadParams::kSize);
     lsq.block_sizes.push_back(kWeaveSize);
   }
+  lsq.block_sizes.push_back(1);
+  lsq.specs.back().free = options.fit_scale;
+  weave->fit_scale = options.fit_scale;
   lsq.sigma_known = table.has_sigma;
 
   // With every offset_scale fixed the tangent samples never change: compute
@@ -440,6 +494,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       used.push_back(blocks[2 * j]);
       if (weave->weave_blocks) used.push_back(blocks[2 * j + 1]);
     }
+    if (weave->fit_scale) used.push_back(blocks.back());
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
       ceres::CostFunction* cost =
@@ -457,7 +512,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
         Predict(table, FromVector(init, x, weave->shared_albedo), row_samples);
     for (size_t i = 0; i < table.rows.size(); ++i) {
       for (int ch = 0; ch < table.channels; ++ch) {
-        model->push_back(v[i][ch]);
+        model->push_back(x.back() * v[i][ch]);
         measured->push_back(table.rows[i].value[ch]);
       }
     }
@@ -466,7 +521,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   // Starts: the init, and (multi-start) each thread's two widths scaled by
   // 0.5, 1 or 2 (all combinations); each with the linear parameters (albedo
   // and kd) solved in closed form; ranked by cost.
-  std::vector<ClothParams> candidates;
+  std::vector<std::pair<ClothParams, double>> candidates;  // with the scale
   int combos = 1;
   if (options.multi_start) {
     for (size_t j = 0; j < n; ++j) combos *= 3;
@@ -486,15 +541,17 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
         p.gamma_v_deg = std::clamp(p.gamma_v_deg * f, 0.2, 90.0);
       }
     }
+    double scale = 1.0;
     if (albedo_free) {
       SolveLinearParameters(table, row_samples, kd_free, weave->shared_albedo,
-                            &c);
+                            &c, options.fit_scale ? &scale : nullptr);
     }
-    candidates.push_back(c);
+    candidates.emplace_back(c, scale);
   }
   std::vector<std::pair<double, std::vector<double>>> ranked;
-  for (const ClothParams& c : candidates) {
-    const std::vector<double> x = ToVector(c);
+  for (const auto& [c, scale] : candidates) {
+    std::vector<double> x = ToVector(c);
+    x.back() = scale;
     ranked.emplace_back(EvaluateCost(lsq, x), x);
   }
   std::stable_sort(ranked.begin(), ranked.end(),

@@ -29,6 +29,9 @@ struct ClothFitOptions {
   int solve_starts = 1;
   // Every thread shares thread 0's albedo (one colour for the fabric).
   bool shared_albedo = false;
+  // Data on an arbitrary scale: fit a factor s on the model as well
+  // (reported as the parameter "scale"; the parameter file holds the model).
+  bool fit_scale = false;
 };
 
 struct ClothFitResult {

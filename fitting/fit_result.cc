@@ -20,6 +20,9 @@ std::string FitReportJson(const FitReport& r) {
   j["seconds"] = r.seconds;
   j["residuals"] = r.residuals;
   j["starts"] = r.starts;
+  nlohmann::ordered_json values = nlohmann::ordered_json::object();
+  for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
+  j["values"] = values;
   nlohmann::ordered_json stddev = nlohmann::ordered_json::object();
   nlohmann::ordered_json fixed = nlohmann::ordered_json::array();
   nlohmann::ordered_json at_bound = nlohmann::ordered_json::array();

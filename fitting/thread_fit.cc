@@ -12,31 +12,41 @@
 namespace clothfit {
 namespace {
 
-// residual_c = (model_c - measured_c) sqrt(weight) / sigma_c, c < kChannels.
+// residual_c = (s model_c - measured_c) sqrt(weight) / sigma_c, c <
+// kChannels, with s = 1, or the free scale of data on an arbitrary scale
+// (a second block).
 template <int kChannels>
 struct ThreadResidual {
   glm::dvec3 wi, wo, value, scale;
   Quantity quantity;
 
   template <typename T>
-  bool operator()(const T* x, T* residual) const {
+  bool operator()(const T* x, const T* s, T* residual) const {
     const Vec3<T> model = ThreadValue(ThreadParamsFromArray(x), Cast<T>(wi),
                                       Cast<T>(wo), quantity);
     for (int c = 0; c < kChannels; ++c) {
-      residual[c] = (model[c] - T(value[c])) * T(scale[c]);
+      residual[c] = ((s ? s[0] : T(1.0)) * model[c] - T(value[c])) * T(scale[c]);
     }
     return true;
   }
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    return (*this)(x, static_cast<const T*>(nullptr), residual);
+  }
 
-  static ceres::CostFunction* Create(const TableRow& row, Quantity quantity) {
-    return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels,
-                                           ThreadParams::kSize>(
-        new ThreadResidual{row.wi, row.wo, row.value,
-                           std::sqrt(row.weight) / row.sigma, quantity});
+  static ceres::CostFunction* Create(const TableRow& row, Quantity quantity,
+                                     bool fit_scale) {
+    auto* f = new ThreadResidual{row.wi, row.wo, row.value,
+                                 std::sqrt(row.weight) / row.sigma, quantity};
+    constexpr int P = ThreadParams::kSize;
+    if (fit_scale) {
+      return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels, P, 1>(f);
+    }
+    return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels, P>(f);
   }
 };
 
-std::vector<ParameterSpec> ThreadSpecs(int channels) {
+std::vector<ParameterSpec> ThreadSpecs() {
   const char* const* names = ThreadParamNames();
   std::vector<ParameterSpec> specs(ThreadParams::kSize);
   const double lower[] = {1.01, 0.0, 0.2, 0.2, 0.0, 0.0, 0.0};
@@ -44,27 +54,60 @@ std::vector<ParameterSpec> ThreadSpecs(int channels) {
   for (int i = 0; i < ThreadParams::kSize; ++i) {
     specs[i] = ParameterSpec{names[i], lower[i], upper[i], true};
   }
-  if (channels == 1) specs[5].free = specs[6].free = false;  // tied to r
   return specs;
 }
 
-// The model is linear in the albedo: model = surface + albedo_c * volume_c.
-// Sets each channel's albedo to its non-negative least-squares value.
-void SolveAlbedo(const MeasurementTable& table, ThreadParams* p) {
+// The model is linear in the albedo: model_c = surface + albedo_c volume_c,
+// and, with a free scale s, s model_c = s surface + (s albedo_c) volume_c is
+// linear in (s, s albedo_c). Solves the weighted non-negative least squares
+// for those (projected Gauss-Seidel; 4 unknowns at most) and sets the
+// albedo (and *scale, when not null).
+void SolveLinearParameters(const MeasurementTable& table, ThreadParams* p,
+                           double* scale) {
   ThreadParams no_albedo = *p, unit = *p;
   no_albedo.albedo = glm::dvec3(0.0);
   unit.albedo = glm::dvec3(1.0);
-  glm::dvec3 num(0.0), den(0.0);
+  // Unknowns: t_c = s albedo_c (c < channels), then s when free.
+  const int channels = table.channels;
+  const int m = channels + (scale ? 1 : 0);
+  std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
   for (const TableRow& row : table.rows) {
-    const glm::dvec3 w = row.weight / (row.sigma * row.sigma);
-    const glm::dvec3 s = ThreadValue(no_albedo, row.wi, row.wo, table.quantity);
-    const glm::dvec3 v =
-        ThreadValue(unit, row.wi, row.wo, table.quantity) - s;
-    num += w * v * (row.value - s);
-    den += w * v * v;
+    const glm::dvec3 surface =
+        ThreadValue(no_albedo, row.wi, row.wo, table.quantity);
+    const glm::dvec3 volume =
+        ThreadValue(unit, row.wi, row.wo, table.quantity) - surface;
+    for (int c = 0; c < channels; ++c) {
+      const double w = row.weight / (row.sigma[c] * row.sigma[c]);
+      std::fill(basis.begin(), basis.end(), 0.0);
+      basis[c] = volume[c];
+      double target = row.value[c];
+      if (scale) {
+        basis[channels] = surface[c];
+      } else {
+        target -= surface[c];
+      }
+      for (int a = 0; a < m; ++a) {
+        atb[a] += w * basis[a] * target;
+        for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
+      }
+    }
   }
+  std::vector<double> x(m, 0.0);
+  if (scale) x[channels] = 1.0;
+  for (int sweep = 0; sweep < 300; ++sweep) {
+    for (int a = 0; a < m; ++a) {
+      if (!(ata[a * m + a] > 0.0)) continue;
+      double rhs = atb[a];
+      for (int b = 0; b < m; ++b) {
+        if (b != a) rhs -= ata[a * m + b] * x[b];
+      }
+      x[a] = std::clamp(rhs / ata[a * m + a], a == channels ? 1e-6 : 0.0, 1e6);
+    }
+  }
+  const double s = scale ? x[channels] : 1.0;
+  if (scale) *scale = s;
   for (int c = 0; c < 3; ++c) {
-    p->albedo[c] = den[c] > 0.0 ? std::clamp(num[c] / den[c], 0.0, 1e3) : 0.0;
+    p->albedo[c] = std::clamp(x[std::min(c, channels - 1)] / s, 0.0, 1e3);
   }
 }
 
@@ -92,25 +135,34 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                      "values, not transmittance");
   }
   LeastSquaresProblem lsq;
-  lsq.specs = ThreadSpecs(table.channels);
+  lsq.specs = ThreadSpecs();
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
-  lsq.block_sizes = {ThreadParams::kSize};
+  if (table.channels == 1) {  // one channel: albedo_g, albedo_b follow r
+    lsq.specs[5].free = lsq.specs[6].free = false;
+  }
+  lsq.block_sizes = {ThreadParams::kSize, 1};
+  lsq.specs.push_back({"scale", 1e-6, 1e6, options.fit_scale});
   lsq.sigma_known = table.has_sigma;
   lsq.add_residuals = [&](const std::vector<double*>& blocks,
                           ceres::LossFunction* loss, ceres::Problem* problem) {
     for (const TableRow& row : table.rows) {
       ceres::CostFunction* cost =
           table.channels == 1
-              ? ThreadResidual<1>::Create(row, table.quantity)
-              : ThreadResidual<3>::Create(row, table.quantity);
-      problem->AddResidualBlock(cost, loss, blocks[0]);
+              ? ThreadResidual<1>::Create(row, table.quantity, options.fit_scale)
+              : ThreadResidual<3>::Create(row, table.quantity, options.fit_scale);
+      if (options.fit_scale) {
+        problem->AddResidualBlock(cost, loss, blocks[0], blocks[1]);
+      } else {
+        problem->AddResidualBlock(cost, loss, blocks[0]);
+      }
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
                     std::vector<double>* measured) {
     const ThreadParams p = ThreadParamsFromArray(x.data());
     for (const TableRow& row : table.rows) {
-      const glm::dvec3 m = ThreadValue(p, row.wi, row.wo, table.quantity);
+      const glm::dvec3 m =
+          x[ThreadParams::kSize] * ThreadValue(p, row.wi, row.wo, table.quantity);
       for (int c = 0; c < table.channels; ++c) {
         model->push_back(m[c]);
         measured->push_back(row.value[c]);
@@ -121,7 +173,7 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   // Starts: the init, or the default grid with closed-form albedo, ranked.
   std::vector<std::vector<double>> starts;
   auto as_array = [](const ThreadParams& p) {
-    std::vector<double> x(ThreadParams::kSize);
+    std::vector<double> x(ThreadParams::kSize + 1, 1.0);  // scale = 1
     ToArray(p, x.data());
     return x;
   };
@@ -131,8 +183,10 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     std::vector<std::pair<double, std::vector<double>>> ranked;
     for (ThreadParams p :
          options.grid.empty() ? DefaultThreadStarts() : options.grid) {
-      SolveAlbedo(table, &p);
-      const std::vector<double> x = as_array(p);
+      double scale = 1.0;
+      SolveLinearParameters(table, &p, options.fit_scale ? &scale : nullptr);
+      std::vector<double> x = as_array(p);
+      x[ThreadParams::kSize] = scale;
       ranked.emplace_back(EvaluateCost(lsq, x), x);
     }
     std::stable_sort(ranked.begin(), ranked.end(),

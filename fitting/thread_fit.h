@@ -25,6 +25,9 @@ struct ThreadFitOptions {
   std::vector<std::string> free_only;
   // Multi-start: how many of the grid's best starts the solver runs from.
   int solve_starts = 2;
+  // Data on an arbitrary scale: fit a factor s on the model as well
+  // (reported as the parameter "scale"; the parameter file holds the model).
+  bool fit_scale = false;
 };
 
 struct ThreadFitResult {
