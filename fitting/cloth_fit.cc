@@ -7,6 +7,7 @@
 #include <ceres/ceres.h>
 
 #include "fitting/least_squares.h"
+#include "fitting/start_search.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
@@ -221,13 +222,15 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
     for (int i = 0; i < ThreadParams::kSize; ++i) {
       // eta is fixed by default: the data rarely separate it from kd/albedo.
       const bool free = i != 0;
-      specs.push_back({prefix + names[i], lower[i], upper[i], free});
+      // kd and the albedo are bounded by their physical range.
+      specs.push_back({prefix + names[i], lower[i], upper[i], free,
+                       i == 1 || i >= 4});
     }
     double largest = 0.0;
     for (double o : layout.threads[j].offsets_deg) {
       largest = std::max(largest, std::abs(o));
     }
-    specs.push_back({prefix + "coverage", 0.0, 1.0, false});
+    specs.push_back({prefix + "coverage", 0.0, 1.0, false, true});
     specs.push_back({prefix + "offset_scale", 0.0,
                      largest > 0.0 ? 90.0 / largest : 1.0, false});
   }
@@ -278,112 +281,6 @@ Values Predict(const MeasurementTable& table, const ClothParams& c,
                         : ClothValue(c, row.wi, row.wo, table.quantity);
   }
   return out;
-}
-
-// The model is linear in each thread's albedo A and in B = A kd:
-//   model = base + sum_j A_j P_j + B_j (R_j - P_j),
-// P_j = model(A_j = 1, kd_j = 0) - base, R_j = model(A_j = 1, kd_j = 1) -
-// base, base = model(all A = 0); with kd_j fixed, P_j is taken at that kd_j
-// and B_j drops out. With a shared albedo, A_j = A_0 for every j. Per
-// channel, solves the weighted least squares for A >= 0 and 0 <= B_j <= A_j
-// by projected Gauss-Seidel, then sets kd_j = sum_c B_jc / sum_c A_jc.
-//
-// With a free scale s (scale != null): s model = s base + sum (s A_j) P_j +
-// (s B_j) (R_j - P_j) is linear in (s, s A, s B); each channel is solved
-// with its own s, *scale receives their mean, and the albedos and B are
-// divided by it.
-void SolveLinearParameters(
-    const MeasurementTable& table,
-    const std::vector<std::shared_ptr<const RowSamples>>& samples,
-    const std::vector<bool>& kd_free, bool shared_albedo, ClothParams* c,
-    double* scale) {
-  const size_t n = c->threads.size();
-  ClothParams base = *c;
-  for (ClothThread& th : base.threads) th.params.albedo = glm::dvec3(0.0);
-  const Values v0 = Predict(table, base, samples);
-  std::vector<Values> p(n), r(n);
-  for (size_t j = 0; j < n; ++j) {
-    ClothParams one = base;
-    one.threads[j].params.albedo = glm::dvec3(1.0);
-    one.threads[j].params.kd = kd_free[j] ? 0.0 : c->threads[j].params.kd;
-    p[j] = Predict(table, one, samples);
-    if (kd_free[j]) {
-      one.threads[j].params.kd = 1.0;
-      r[j] = Predict(table, one, samples);
-    }
-  }
-  // Unknowns per channel: the albedos (one, or one per thread), then B_j
-  // for the threads with kd free.
-  std::vector<int> a_index(n), b_index(n, -1);
-  int m = 0;
-  for (size_t j = 0; j < n; ++j) a_index[j] = shared_albedo ? 0 : m++;
-  if (shared_albedo) m = 1;
-  for (size_t j = 0; j < n; ++j) {
-    if (kd_free[j]) b_index[j] = m++;
-  }
-  const int s_index = scale ? m++ : -1;
-  double scale_sum = 0.0;
-  std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
-  for (int ch = 0; ch < table.channels; ++ch) {
-    std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
-    for (size_t i = 0; i < table.rows.size(); ++i) {
-      const TableRow& row = table.rows[i];
-      const double w = row.weight / (row.sigma[ch] * row.sigma[ch]);
-      std::fill(basis.begin(), basis.end(), 0.0);
-      for (size_t j = 0; j < n; ++j) {
-        basis[a_index[j]] += p[j][i][ch] - v0[i][ch];
-        if (kd_free[j]) basis[b_index[j]] = r[j][i][ch] - p[j][i][ch];
-      }
-      double target = row.value[ch];
-      if (scale) {
-        basis[s_index] = v0[i][ch];
-      } else {
-        target -= v0[i][ch];
-      }
-      for (int a = 0; a < m; ++a) {
-        atb[a] += w * basis[a] * target;
-        for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
-      }
-    }
-    std::vector<double> x(m, 0.0);
-    if (scale) x[s_index] = 1.0;
-    for (int sweep = 0; sweep < 300; ++sweep) {
-      for (int a = 0; a < m; ++a) {
-        if (!(ata[a * m + a] > 0.0)) continue;
-        double rhs = atb[a];
-        for (int b = 0; b < m; ++b) {
-          if (b != a) rhs -= ata[a * m + b] * x[b];
-        }
-        double lo = 0.0, hi = 1e6;
-        for (size_t j = 0; j < n; ++j) {
-          if (b_index[j] == a) hi = x[a_index[j]];  // B_j <= A_j
-        }
-        if (a == s_index) lo = 1e-6;
-        x[a] = std::clamp(rhs / ata[a * m + a], lo, hi);
-      }
-    }
-    const double s = scale ? x[s_index] : 1.0;
-    scale_sum += s;
-    for (size_t j = 0; j < n; ++j) {
-      a_out[j][ch] = x[a_index[j]] / s;
-      if (kd_free[j]) b_out[j][ch] = x[b_index[j]] / s;
-    }
-  }
-  if (scale) *scale = scale_sum / table.channels;
-  for (size_t j = 0; j < n; ++j) {
-    ThreadParams& tp = c->threads[j].params;
-    for (int ch = 0; ch < 3; ++ch) {
-      tp.albedo[ch] = std::min(a_out[j][table.channels == 1 ? 0 : ch], 1e3);
-    }
-    if (kd_free[j]) {
-      double a = 0.0, b = 0.0;
-      for (int ch = 0; ch < table.channels; ++ch) {
-        a += a_out[j][ch];
-        b += b_out[j][ch];
-      }
-      tp.kd = a > 0.0 ? std::clamp(b / a, 0.0, 1.0) : tp.kd;
-    }
-  }
 }
 
 }  // namespace
@@ -455,17 +352,12 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     }
   }
   bool offsets_fixed = true;
-  std::vector<bool> eta_fixed(n), kd_free(n);
-  bool albedo_free = false;
+  std::vector<bool> eta_fixed(n);
   for (size_t j = 0; j < n; ++j) {
     weave->weave_blocks = weave->weave_blocks || is_free(j, kCoverage) ||
                           is_free(j, kOffsetScale);
     offsets_fixed = offsets_fixed && !is_free(j, kOffsetScale);
     eta_fixed[j] = !is_free(j, kEta);
-    kd_free[j] = is_free(j, kKd);
-    for (int c = 0; c < 3; ++c) {
-      albedo_free = albedo_free || is_free(j, kAlbedo + c);
-    }
   }
   // Ceres blocks: [thread j params] (+ [weave j]) in vector order; the
   // weave entries that Ceres does not see stay at their initial values.
@@ -518,47 +410,73 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     }
   };
 
-  // Starts: the init, and (multi-start) each thread's two widths scaled by
-  // 0.5, 1 or 2 (all combinations); each with the linear parameters (albedo
-  // and kd) solved in closed form; ranked by cost.
-  std::vector<std::pair<ClothParams, double>> candidates;  // with the scale
-  int combos = 1;
-  if (options.multi_start) {
-    for (size_t j = 0; j < n; ++j) combos *= 3;
+  // Starts: a grid search over each thread's widths (and eta) with the
+  // linear parameters (albedo, kd, scale) solved in closed form, by
+  // coordinate descent over the threads (fitting/start_search.h). It needs
+  // each thread's contribution a_j S_j / Q per row, with the tangent
+  // samples and Q of the initial weave.
+  std::vector<std::shared_ptr<const RowSamples>> search_samples = row_samples;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    if (!search_samples[i]) {
+      search_samples[i] = std::make_shared<const RowSamples>(
+          ComputeRowSamples(init, eta_fixed, table.rows[i]));
+    }
   }
-  const double kFactors[] = {1.0, 0.5, 2.0};
-  for (int combo = 0; combo < combos; ++combo) {
-    ClothParams c = init;
-    int code = combo;
+  std::vector<double> inv_q(table.rows.size(), 0.0);  // 1 / Q, 0 if Q <= 0
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    double q = 0.0, coverage = 0.0;
     for (size_t j = 0; j < n; ++j) {
-      const double f = kFactors[code % 3];
-      code /= 3;
-      ThreadParams& p = c.threads[j].params;
-      if (is_free(j, kGammaS)) {
-        p.gamma_s_deg = std::clamp(p.gamma_s_deg * f, 0.2, 90.0);
-      }
-      if (is_free(j, kGammaV)) {
-        p.gamma_v_deg = std::clamp(p.gamma_v_deg * f, 0.2, 90.0);
-      }
+      Vec3<double> s_j;
+      double w_j;
+      ThreadSums(init.threads[j].params, *search_samples[i], j, &s_j, &w_j);
+      q += init.threads[j].coverage * w_j;
+      coverage += init.threads[j].coverage;
     }
-    double scale = 1.0;
-    if (albedo_free) {
-      SolveLinearParameters(table, row_samples, kd_free, weave->shared_albedo,
-                            &c, options.fit_scale ? &scale : nullptr);
+    q += (1.0 - coverage) * table.rows[i].wi.z;
+    inv_q[i] = q > 0.0 ? 1.0 / q : 0.0;
+  }
+  StartSearchProblem search;
+  search.table = &table;
+  search.contribution = [&](size_t j, const ThreadParams& p) {
+    RowValues v(table.rows.size());
+    const double coverage = init.threads[j].coverage;
+    for (size_t i = 0; i < v.size(); ++i) {
+      Vec3<double> s_j;
+      double w_j;
+      ThreadSums(p, *search_samples[i], j, &s_j, &w_j);
+      v[i] = FromCosineWeighted(s_j * (coverage * inv_q[i]),
+                                table.rows[i].wi.z, table.quantity);
     }
-    candidates.emplace_back(c, scale);
+    return v;
+  };
+  search.shared_albedo = weave->shared_albedo;
+  search.fit_scale = options.fit_scale;
+  for (size_t j = 0; j < n; ++j) {
+    search.init.push_back(init.threads[j].params);
+    search.eta_free.push_back(is_free(j, kEta));
+    search.kd_free.push_back(is_free(j, kKd));
+    search.gamma_s_free.push_back(is_free(j, kGammaS));
+    search.gamma_v_free.push_back(is_free(j, kGammaV));
+    // A shared albedo is thread 0's (the others' entries are fixed).
+    const size_t owner = weave->shared_albedo ? 0 : j;
+    search.albedo_free.push_back(is_free(owner, kAlbedo) ||
+                                 is_free(owner, kAlbedo + 1) ||
+                                 is_free(owner, kAlbedo + 2));
   }
-  std::vector<std::pair<double, std::vector<double>>> ranked;
-  for (const auto& [c, scale] : candidates) {
-    std::vector<double> x = ToVector(c);
-    x.back() = scale;
-    ranked.emplace_back(EvaluateCost(lsq, x), x);
+  if (!options.multi_start) {  // one start: the init
+    for (size_t j = 0; j < n; ++j) {
+      search.eta_free[j] = search.gamma_s_free[j] = search.gamma_v_free[j] = false;
+    }
   }
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  const size_t solves = std::clamp<size_t>(options.solve_starts, 1, ranked.size());
   std::vector<std::vector<double>> starts;
-  for (size_t i = 0; i < solves; ++i) starts.push_back(ranked[i].second);
+  for (const StartPoint& point :
+       SearchStarts(search, std::max(1, options.solve_starts))) {
+    ClothParams c = init;
+    for (size_t j = 0; j < n; ++j) c.threads[j].params = point.threads[j];
+    std::vector<double> x = ToVector(c);
+    x.back() = point.scale;
+    starts.push_back(x);
+  }
 
   ClothFitResult result;
   std::vector<double> x = starts.front();

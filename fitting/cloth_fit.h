@@ -26,7 +26,7 @@ struct ClothFitOptions {
   // solved in closed form (the model is linear in A and A kd); ranked by
   // cost, the solver runs from the best `solve_starts`.
   bool multi_start = true;
-  int solve_starts = 1;
+  int solve_starts = 2;
   // Every thread shares thread 0's albedo (one colour for the fabric).
   bool shared_albedo = false;
   // Data on an arbitrary scale: fit a factor s on the model as well

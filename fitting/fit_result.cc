@@ -74,11 +74,15 @@ std::string FitReportText(const FitReport& r, const std::vector<double>& truth) 
       std::snprintf(line, sizeof(line), " %14.6g", truth[i]);
       out << line;
     }
-    if (p.at_bound) out << "  (at bound)";
+    if (p.at_search_limit) {
+      out << "  (at search limit)";
+    } else if (p.at_bound) {
+      out << "  (at bound)";
+    }
     out << "\n";
   }
   if (!r.identifiability.empty()) out << r.identifiability << "\n";
-  if (!r.usable) out << "reason: " << r.message << "\n";
+  if (!r.usable || !r.converged) out << "reason: " << r.message << "\n";
   return out.str();
 }
 

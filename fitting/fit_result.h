@@ -26,6 +26,7 @@ struct ParameterReport {
   double stddev = -1.0;      // < 0: not available (fixed or not identifiable)
   double lower = 0.0, upper = 0.0;
   bool at_bound = false;     // a free parameter ended on its bound
+  bool at_search_limit = false;  // ... on a bound that only limits the search
 };
 
 struct FitReport {

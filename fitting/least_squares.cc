@@ -183,6 +183,7 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     const double span = std::max(1e-12, spec.upper - spec.lower);
     p.at_bound = spec.free && (p.value - spec.lower < 1e-9 * span ||
                                spec.upper - p.value < 1e-9 * span);
+    p.at_search_limit = p.at_bound && !spec.physical_bounds;
     p.stddev = stddev[i];
     report->parameters.push_back(p);
   }
@@ -300,6 +301,17 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     std::vector<double> x = best_x;
     Build(lsq, options, &x, &built);
     Report(lsq, x, &built, &best);
+    // A free parameter on a search limit: the solver wanted to leave the
+    // region where the model means something; not a converged fit.
+    for (const ParameterReport& p : best.parameters) {
+      if (!p.at_search_limit || !best.converged) continue;
+      best.converged = false;
+      std::ostringstream msg;
+      msg << p.name << " stopped at its search limit " << p.value
+          << " (a local minimum or a model that does not fit; try --init or "
+             "--fix)";
+      best.message = msg.str();
+    }
     std::vector<double> model, measured;
     lsq.predict(x, &model, &measured);
     double se = 0.0, ss = 0.0;

@@ -22,6 +22,12 @@ struct ParameterSpec {
   std::string name;
   double lower = 0.0, upper = 0.0;
   bool free = true;
+  // The bounds are the parameter's physical range (kd in [0, 1], albedo >=
+  // 0): a solution on them is legitimate. Otherwise they only limit the
+  // search (eta, the widths, the scale), and a free parameter that ends on
+  // one means the solver left the region where the model is meaningful:
+  // the fit is reported as not converged.
+  bool physical_bounds = false;
 };
 
 // A problem over the blocks of `x`: block b holds x[offset_b, offset_b +

@@ -215,9 +215,8 @@ ThreadSelection SelectThreadModel(const MeasurementTable& table,
     ThreadFitOptions o = options;
     if (kd_mode < 2) {
       o.fix.push_back("kd");
-      if (o.init) o.init->kd = kd_mode;
-      o.grid = DefaultThreadStarts();
-      for (ThreadParams& p : o.grid) p.kd = kd_mode;
+      if (!o.init) o.init = ThreadParams();
+      o.init->kd = kd_mode;
     }
     fits.push_back(FitThread(table, o));
     out.report.candidates.push_back(Describe(

@@ -6,6 +6,7 @@
 #include <ceres/ceres.h>
 
 #include "fitting/least_squares.h"
+#include "fitting/start_search.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
@@ -52,81 +53,14 @@ std::vector<ParameterSpec> ThreadSpecs() {
   const double lower[] = {1.01, 0.0, 0.2, 0.2, 0.0, 0.0, 0.0};
   const double upper[] = {3.0, 1.0, 90.0, 90.0, 1e3, 1e3, 1e3};
   for (int i = 0; i < ThreadParams::kSize; ++i) {
-    specs[i] = ParameterSpec{names[i], lower[i], upper[i], true};
+    // kd and the albedo are bounded by their physical range (i = 1, 4..6).
+    specs[i] = ParameterSpec{names[i], lower[i], upper[i], true,
+                             i == 1 || i >= 4};
   }
   return specs;
 }
 
-// The model is linear in the albedo: model_c = surface + albedo_c volume_c,
-// and, with a free scale s, s model_c = s surface + (s albedo_c) volume_c is
-// linear in (s, s albedo_c). Solves the weighted non-negative least squares
-// for those (projected Gauss-Seidel; 4 unknowns at most) and sets the
-// albedo (and *scale, when not null).
-void SolveLinearParameters(const MeasurementTable& table, ThreadParams* p,
-                           double* scale) {
-  ThreadParams no_albedo = *p, unit = *p;
-  no_albedo.albedo = glm::dvec3(0.0);
-  unit.albedo = glm::dvec3(1.0);
-  // Unknowns: t_c = s albedo_c (c < channels), then s when free.
-  const int channels = table.channels;
-  const int m = channels + (scale ? 1 : 0);
-  std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
-  for (const TableRow& row : table.rows) {
-    const glm::dvec3 surface =
-        ThreadValue(no_albedo, row.wi, row.wo, table.quantity);
-    const glm::dvec3 volume =
-        ThreadValue(unit, row.wi, row.wo, table.quantity) - surface;
-    for (int c = 0; c < channels; ++c) {
-      const double w = row.weight / (row.sigma[c] * row.sigma[c]);
-      std::fill(basis.begin(), basis.end(), 0.0);
-      basis[c] = volume[c];
-      double target = row.value[c];
-      if (scale) {
-        basis[channels] = surface[c];
-      } else {
-        target -= surface[c];
-      }
-      for (int a = 0; a < m; ++a) {
-        atb[a] += w * basis[a] * target;
-        for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
-      }
-    }
-  }
-  std::vector<double> x(m, 0.0);
-  if (scale) x[channels] = 1.0;
-  for (int sweep = 0; sweep < 300; ++sweep) {
-    for (int a = 0; a < m; ++a) {
-      if (!(ata[a * m + a] > 0.0)) continue;
-      double rhs = atb[a];
-      for (int b = 0; b < m; ++b) {
-        if (b != a) rhs -= ata[a * m + b] * x[b];
-      }
-      x[a] = std::clamp(rhs / ata[a * m + a], a == channels ? 1e-6 : 0.0, 1e6);
-    }
-  }
-  const double s = scale ? x[channels] : 1.0;
-  if (scale) *scale = s;
-  for (int c = 0; c < 3; ++c) {
-    p->albedo[c] = std::clamp(x[std::min(c, channels - 1)] / s, 0.0, 1e3);
-  }
-}
-
 }  // namespace
-
-std::vector<ThreadParams> DefaultThreadStarts() {
-  std::vector<ThreadParams> starts;
-  for (double gamma_s : {2.0, 6.0, 15.0}) {
-    for (double kd : {0.1, 0.5}) {
-      ThreadParams p;
-      p.eta = 1.45;
-      p.kd = kd;
-      p.gamma_s_deg = gamma_s;
-      p.gamma_v_deg = 2.0 * gamma_s;
-      starts.push_back(p);
-    }
-  }
-  return starts;
-}
 
 ThreadFitResult FitThread(const MeasurementTable& table,
                           const ThreadFitOptions& options) {
@@ -170,29 +104,33 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     }
   };
 
-  // Starts: the init, or the default grid with closed-form albedo, ranked.
-  std::vector<std::vector<double>> starts;
-  auto as_array = [](const ThreadParams& p) {
-    std::vector<double> x(ThreadParams::kSize + 1, 1.0);  // scale = 1
-    ToArray(p, x.data());
-    return x;
-  };
-  if (options.init) {
-    starts.push_back(as_array(*options.init));
-  } else {
-    std::vector<std::pair<double, std::vector<double>>> ranked;
-    for (ThreadParams p :
-         options.grid.empty() ? DefaultThreadStarts() : options.grid) {
-      double scale = 1.0;
-      SolveLinearParameters(table, &p, options.fit_scale ? &scale : nullptr);
-      std::vector<double> x = as_array(p);
-      x[ThreadParams::kSize] = scale;
-      ranked.emplace_back(EvaluateCost(lsq, x), x);
+  // Starts: a grid search over the widths (and eta) with the linear
+  // parameters (albedo, kd, scale) solved in closed form; the init's values
+  // join the grid, fixed entries keep them (fitting/start_search.h).
+  StartSearchProblem search;
+  search.table = &table;
+  search.init = {options.init ? *options.init : ThreadParams()};
+  search.contribution = [&](size_t, const ThreadParams& p) {
+    RowValues v(table.rows.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+      v[i] = ThreadValue(p, table.rows[i].wi, table.rows[i].wo, table.quantity);
     }
-    std::stable_sort(ranked.begin(), ranked.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    const size_t n = std::clamp<size_t>(options.solve_starts, 1, ranked.size());
-    for (size_t i = 0; i < n; ++i) starts.push_back(ranked[i].second);
+    return v;
+  };
+  search.eta_free = {lsq.specs[0].free};
+  search.kd_free = {lsq.specs[1].free};
+  search.gamma_s_free = {lsq.specs[2].free};
+  search.gamma_v_free = {lsq.specs[3].free};
+  search.albedo_free = {lsq.specs[4].free || lsq.specs[5].free ||
+                        lsq.specs[6].free};
+  search.fit_scale = options.fit_scale;
+  std::vector<std::vector<double>> starts;
+  for (const StartPoint& point :
+       SearchStarts(search, std::max(1, options.solve_starts))) {
+    std::vector<double> x(ThreadParams::kSize + 1);
+    ToArray(point.threads[0], x.data());
+    x[ThreadParams::kSize] = point.scale;
+    starts.push_back(x);
   }
 
   ThreadFitResult result;

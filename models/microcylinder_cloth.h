@@ -236,10 +236,32 @@ TangentSample<G> ComputeTangentSample(ThreadDirection direction,
   return out;
 }
 
-// rho from the samples of every thread (eq. 11-13). `samples.Count(j)` and
-// `samples.Get(j, k)` give thread j's samples (a TangentSample<G>), and
-// `samples.Bsdf(j, k, sample, params)` their thread BSDF (ThreadBsdf, or the
-// same with a Fresnel term computed once); cloth gives the coverages and
+// Thread j's sums of eq. 11-12 over its samples: S_j = (1/T_j) sum_t f_s M
+// P cos(theta_i) and W_j = (1/T_j) sum_t P (both 0 without samples).
+// `samples.Count(j)` and `samples.Get(j, k)` give thread j's samples (a
+// TangentSample<G>), and `samples.Bsdf(j, k, sample, params)` their thread
+// BSDF (ThreadBsdf, or the same with a Fresnel term computed once).
+template <typename T, typename G, typename Samples>
+void ThreadSums(const ThreadParamsT<T>& params, const Samples& samples,
+                size_t j, Vec3<T>* s_j, G* w_j) {
+  *s_j = Vec3<T>(T(0.0));
+  *w_j = G(0.0);
+  const int count = samples.Count(j);
+  if (count == 0) return;
+  for (int k = 0; k < count; ++k) {
+    const TangentSample<G>& sample = samples.Get(j, k);
+    if (!sample.valid) continue;
+    *w_j += sample.reweight;
+    if (sample.weight > G(0.0)) {
+      *s_j += samples.Bsdf(j, k, sample, params) * T(sample.weight);
+    }
+  }
+  *s_j = *s_j * T(1.0 / count);
+  *w_j = *w_j * G(1.0 / count);
+}
+
+// rho from the samples of every thread (eq. 11-13): sum_j a_j S_j / Q with
+// Q = sum_j a_j W_j + (1 - sum_j a_j) wi.z; cloth gives the coverages and
 // scattering parameters (its offsets are not read). ClothRho computes the
 // samples on the fly; a fit with fixed directions and offsets passes samples
 // it computed once.
@@ -253,21 +275,11 @@ Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
   for (size_t j = 0; j < cloth.threads.size(); ++j) {
     const ClothThreadT<T>& th = cloth.threads[j];
     coverage_sum += th.coverage;
-    const int count = samples.Count(j);
-    if (count == 0) continue;
-    Vec3<T> s = zero;
-    G w(0.0);
-    for (int k = 0; k < count; ++k) {
-      const TangentSample<G>& sample = samples.Get(j, k);
-      if (!sample.valid) continue;
-      w += sample.reweight;
-      if (sample.weight > G(0.0)) {
-        s += samples.Bsdf(j, k, sample, th.params) * T(sample.weight);
-      }
-    }
-    const T share = th.coverage * T(1.0 / count);
-    sum += s * share;
-    q += share * T(w);
+    Vec3<T> s_j;
+    G w_j;
+    ThreadSums(th.params, samples, j, &s_j, &w_j);
+    sum += s_j * th.coverage;
+    q += th.coverage * T(w_j);
   }
   q += (T(1.0) - coverage_sum) * T(wi_z);
   if (!(q > T(0.0))) return zero;
