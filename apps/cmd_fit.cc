@@ -1,4 +1,6 @@
 // clothfit fit: fits a model's parameters to a measurement table (SPEC §5).
+#include <unistd.h>
+
 #include <iostream>
 #include <sstream>
 
@@ -47,6 +49,12 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   const long threads = args.GetInt("threads");
   if (threads < 1 || threads > 256) args.Fail("option '--threads': must be in [1, 256]");
   s.num_threads = static_cast<int>(threads);
+  // A progress line on a terminal, overwritten in place.
+  if (isatty(STDERR_FILENO)) {
+    s.progress = [](const std::string& what) {
+      std::cerr << "\r\033[Kfit: " << what << "..." << std::flush;
+    };
+  }
   return s;
 }
 
@@ -54,6 +62,7 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
 // `selection` (may be null) is the --tolerance report, added to "fit".
 int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
            const std::vector<double>& truth, const SelectionReport* selection) {
+  if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
   if (selection) std::cout << SelectionReportText(*selection) << "\n";
   std::cout << FitReportText(report, truth);
   if (!report.usable) {

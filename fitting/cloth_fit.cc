@@ -1,6 +1,7 @@
 #include "fitting/cloth_fit.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 
@@ -48,10 +49,10 @@ struct RowSamples {
     return per_thread[j][k];
   }
   template <typename T>
-  Vec3<T> Bsdf(size_t j, int k, const TangentSample<double>& sample,
-               const ThreadParamsT<T>& params) const {
-    if (fresnel[j].empty()) return ThreadBsdf(sample.geometry, params);
-    return ThreadBsdfGivenFresnel(sample.geometry, fresnel[j][k], params);
+  ThreadLobes<T> Lobes(size_t j, int k, const TangentSample<double>& sample,
+                       const ThreadParamsT<T>& params) const {
+    if (fresnel[j].empty()) return ThreadLobesOf(sample.geometry, params);
+    return ThreadLobesGivenFresnel(sample.geometry, fresnel[j][k], params);
   }
 };
 
@@ -319,6 +320,7 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
 
 ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
                         const ClothFitOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();  // search + solves
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError("a cloth model predicts brdf or cosine_weighted values, "
                      "not transmittance");
@@ -453,7 +455,6 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   search.fit_scale = options.fit_scale;
   for (size_t j = 0; j < n; ++j) {
     search.init.push_back(init.threads[j].params);
-    search.eta_free.push_back(is_free(j, kEta));
     search.kd_free.push_back(is_free(j, kKd));
     search.gamma_s_free.push_back(is_free(j, kGammaS));
     search.gamma_v_free.push_back(is_free(j, kGammaV));
@@ -465,7 +466,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   if (!options.multi_start) {  // one start: the init
     for (size_t j = 0; j < n; ++j) {
-      search.eta_free[j] = search.gamma_s_free[j] = search.gamma_v_free[j] = false;
+      search.gamma_s_free[j] = search.gamma_v_free[j] = false;
     }
   }
   std::vector<std::vector<double>> starts;
@@ -496,6 +497,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       th.params.albedo = glm::dvec3(th.params.albedo.x);
     }
   }
+  result.report.seconds = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - t0)
+                              .count();
   return result;
 }
 

@@ -3,6 +3,7 @@
 // an honest statement of which parameters the data cannot determine.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct SolverOptions {
   Loss loss = Loss::kNone;
   double loss_scale = 1.0;   // in units of sigma (residuals are normalised)
   int num_threads = 1;
+  // Told what a long fit is doing ("start 2 of 3", "candidate 4 of 12: ...");
+  // may be empty.
+  std::function<void(const std::string&)> progress;
 };
 
 struct ParameterReport {
@@ -38,7 +42,7 @@ struct FitReport {
   double rms = 0.0;             // RMS of (model - measured), data units
   double relative_rms = 0.0;    // RMS(model - measured) / RMS(measured)
   int iterations = 0;
-  double seconds = 0.0;
+  double seconds = 0.0;         // wall time of the whole fit
   int residuals = 0;
   int starts = 1;               // multi-start: how many solves were run
   std::vector<ParameterReport> parameters;

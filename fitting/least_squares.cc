@@ -248,15 +248,17 @@ double EvaluateCost(const LeastSquaresProblem& lsq,
 FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                             const std::vector<std::vector<double>>& starts,
                             const SolverOptions& options,
-                            std::vector<double>* x_out,
-                            const std::function<void(int, int)>& progress) {
+                            std::vector<double>* x_out) {
   const auto t0 = std::chrono::steady_clock::now();
   FitReport best;
   best.final_cost = HUGE_VAL;
   std::vector<double> best_x;
   int total_iterations = 0;
   for (size_t s = 0; s < starts.size(); ++s) {
-    if (progress) progress(static_cast<int>(s) + 1, static_cast<int>(starts.size()));
+    if (options.progress) {
+      options.progress("start " + std::to_string(s + 1) + " of " +
+                       std::to_string(starts.size()));
+    }
     std::vector<double> x = starts[s];
     for (size_t i = 0; i < x.size(); ++i) {
       if (lsq.specs[i].free) {
@@ -269,7 +271,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     solver_options.linear_solver_type = ceres::DENSE_QR;
     solver_options.max_num_iterations = options.max_iterations;
     solver_options.num_threads = options.num_threads;
-    solver_options.function_tolerance = 1e-10;
+    solver_options.function_tolerance = 1e-6;
     solver_options.parameter_tolerance = 1e-10;
     solver_options.gradient_tolerance = 1e-14;
     ceres::Solver::Summary summary;

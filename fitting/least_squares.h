@@ -52,12 +52,12 @@ struct LeastSquaresProblem {
 };
 
 // Solves from each start in `starts` (each a full x), keeps the lowest cost,
-// and reports on it; *x receives the best solution. `progress` (may be
-// null) is told "start i of n" as it goes.
-FitReport SolveLeastSquares(
-    const LeastSquaresProblem& problem, const std::vector<std::vector<double>>& starts,
-    const SolverOptions& options, std::vector<double>* x,
-    const std::function<void(int, int)>& progress = nullptr);
+// and reports on it; *x receives the best solution. options.progress (if
+// set) is told "start i of n" as it goes.
+FitReport SolveLeastSquares(const LeastSquaresProblem& problem,
+                            const std::vector<std::vector<double>>& starts,
+                            const SolverOptions& options,
+                            std::vector<double>* x);
 
 // Marks entries fixed/free. A name matches an entry by its full name
 // ("threads[0].kd"), by its last part ("kd": every thread), and "albedo"

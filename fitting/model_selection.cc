@@ -186,7 +186,13 @@ ClothSelection SelectClothModel(const MeasurementTable& table,
   ClothSelection out;
   out.report.tolerance = tolerance;
   std::vector<std::pair<ClothFitResult, ClothParams>> fits;
-  for (const ClothCandidate& c : candidates) {
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const ClothCandidate& c = candidates[i];
+    if (options.solver.progress) {
+      options.solver.progress("candidate " + std::to_string(i + 1) + " of " +
+                              std::to_string(candidates.size()) + ": " +
+                              c.description);
+    }
     ClothFitOptions o = options;
     o.shared_albedo = c.shared_albedo;
     o.fix.insert(o.fix.end(), c.extra_fix.begin(), c.extra_fix.end());

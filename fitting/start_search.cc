@@ -2,278 +2,308 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
-#include <tuple>
+#include <memory>
 
 namespace clothfit {
 namespace {
 
-std::vector<double> Grid(bool free, double init, std::vector<double> values) {
+// Widths a factor sqrt(2) apart from 1 to 90 degrees, and the initial one;
+// only the initial one when the width is fixed.
+std::vector<double> WidthGrid(bool free, double init) {
   if (!free) return {init};
-  values.push_back(init);
+  std::vector<double> values = {init};
+  for (double w = 1.0; w <= 90.0; w *= std::sqrt(2.0)) values.push_back(w);
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
   return values;
 }
 
-// One grid point of one thread.
-struct Choice {
-  double eta, gamma_s, gamma_v;
-  bool operator<(const Choice& o) const {
-    return std::tie(eta, gamma_s, gamma_v) <
-           std::tie(o.eta, o.gamma_s, o.gamma_v);
+// The basis vectors over the table, and their weighted inner products per
+// channel: G_c(u, v) = sum_i w_ic B_u[i][c] B_v[i][c], b_c(u) = sum_i w_ic
+// B_u[i][c] y_ic, yy_c = sum_i w_ic y_ic^2. Every least-squares problem of
+// the search is then assembled from these sums, independent of the rows.
+class Gram {
+ public:
+  Gram(const MeasurementTable& table, const std::vector<RowValues>& vectors)
+      : n_(vectors.size()), channels_(table.channels) {
+    g_.assign(channels_ * n_ * n_, 0.0);
+    b_.assign(channels_ * n_, 0.0);
+    yy_.assign(channels_, 0.0);
+    std::vector<double> column(n_);
+    for (size_t i = 0; i < table.rows.size(); ++i) {
+      const TableRow& row = table.rows[i];
+      for (int c = 0; c < channels_; ++c) {
+        const double w = row.weight / (row.sigma[c] * row.sigma[c]);
+        const double y = row.value[c];
+        for (size_t u = 0; u < n_; ++u) column[u] = vectors[u][i][c];
+        double* g = &g_[c * n_ * n_];
+        for (size_t u = 0; u < n_; ++u) {
+          const double wu = w * column[u];
+          if (wu == 0.0) continue;
+          for (size_t v = u; v < n_; ++v) g[u * n_ + v] += wu * column[v];
+          b_[c * n_ + u] += wu * y;
+        }
+        yy_[c] += w * y * y;
+      }
+    }
+    for (int c = 0; c < channels_; ++c) {  // mirror the upper triangle
+      double* g = &g_[c * n_ * n_];
+      for (size_t u = 0; u < n_; ++u) {
+        for (size_t v = 0; v < u; ++v) g[u * n_ + v] = g[v * n_ + u];
+      }
+    }
   }
-  bool operator==(const Choice& o) const {
-    return eta == o.eta && gamma_s == o.gamma_s && gamma_v == o.gamma_v;
-  }
+  double G(int c, size_t u, size_t v) const { return g_[(c * n_ + u) * n_ + v]; }
+  double B(int c, size_t u) const { return b_[c * n_ + u]; }
+  double YY(int c) const { return yy_[c]; }
+
+ private:
+  size_t n_;
+  int channels_;
+  std::vector<double> g_, b_, yy_;
 };
 
-// Basis vectors of one thread, cached per (eta, width).
-class ThreadBasis {
- public:
-  ThreadBasis(const StartSearchProblem& problem, size_t j)
-      : problem_(problem), j_(j) {}
+// A linear combination of basis vectors.
+using Combination = std::vector<std::pair<size_t, double>>;
 
-  const RowValues& Surface(double eta, double gamma_s) {
-    auto key = std::make_pair(eta, gamma_s);
-    auto it = surface_.find(key);
-    if (it != surface_.end()) return it->second;
-    ThreadParams p = Base(eta);
-    p.gamma_s_deg = gamma_s;
-    p.albedo = glm::dvec3(0.0);
-    return surface_[key] = problem_.contribution(j_, p);
+double Dot(const Gram& gram, int c, const Combination& a, const Combination& b) {
+  double sum = 0.0;
+  for (const auto& [u, x] : a) {
+    for (const auto& [v, y] : b) sum += x * y * gram.G(c, u, v);
   }
-  // P(gamma_v) = c(A = 1, kd = 0) - surface, at the reference gamma_s.
-  const RowValues& P(double eta, double gamma_v) {
-    auto key = std::make_pair(eta, gamma_v);
-    auto it = p_.find(key);
-    if (it != p_.end()) return it->second;
-    ThreadParams p = Base(eta);
-    p.gamma_v_deg = gamma_v;
-    p.kd = 0.0;
-    p.albedo = glm::dvec3(1.0);
-    return p_[key] = Minus(problem_.contribution(j_, p),
-                           Surface(eta, p.gamma_s_deg));
+  return sum;
+}
+
+double DotY(const Gram& gram, int c, const Combination& a) {
+  double sum = 0.0;
+  for (const auto& [u, x] : a) sum += x * gram.B(c, u);
+  return sum;
+}
+
+// Basis vectors of one thread: surface(gamma_s) per width of its grid,
+// P(gamma_v) per width, and R (see start_search.h).
+struct ThreadVectors {
+  std::vector<double> gamma_s, gamma_v;
+  std::vector<size_t> surface, p;  // indices into the basis
+  size_t r = 0;
+};
+
+class Search {
+ public:
+  explicit Search(const StartSearchProblem& problem) : problem_(problem) {
+    const size_t n = problem.init.size();
+    std::vector<RowValues> vectors;
+    auto add = [&](RowValues v) {
+      vectors.push_back(std::move(v));
+      return vectors.size() - 1;
+    };
+    threads_.resize(n);
+    for (size_t j = 0; j < n; ++j) {
+      const ThreadParams& init = problem.init[j];
+      ThreadVectors& t = threads_[j];
+      t.gamma_s = WidthGrid(problem.gamma_s_free[j], init.gamma_s_deg);
+      t.gamma_v = WidthGrid(problem.gamma_v_free[j], init.gamma_v_deg);
+      ThreadParams p = init;
+      p.albedo = glm::dvec3(0.0);
+      for (double gs : t.gamma_s) {
+        p.gamma_s_deg = gs;
+        t.surface.push_back(add(problem.contribution(j, p)));
+      }
+      // The volume term does not depend on gamma_s: subtract the surface
+      // at the initial width from evaluations with unit albedo.
+      p.gamma_s_deg = init.gamma_s_deg;
+      const RowValues surface = problem.contribution(j, p);
+      auto minus_surface = [&](RowValues v) {
+        for (size_t i = 0; i < v.size(); ++i) v[i] -= surface[i];
+        return v;
+      };
+      p.albedo = glm::dvec3(1.0);
+      p.kd = 0.0;
+      for (double gv : t.gamma_v) {
+        p.gamma_v_deg = gv;
+        t.p.push_back(add(minus_surface(problem.contribution(j, p))));
+      }
+      p.kd = 1.0;
+      t.r = add(minus_surface(problem.contribution(j, p)));
+    }
+    gram_ = std::make_unique<Gram>(*problem.table, vectors);
   }
-  // R = c(A = 1, kd = 1) - surface.
-  const RowValues& R(double eta) {
-    auto it = r_.find(eta);
-    if (it != r_.end()) return it->second;
-    ThreadParams p = Base(eta);
-    p.kd = 1.0;
-    p.albedo = glm::dvec3(1.0);
-    return r_[eta] =
-               Minus(problem_.contribution(j_, p), Surface(eta, p.gamma_s_deg));
-  }
-  // The volume term with the thread's fixed kd and unit albedo.
-  RowValues FixedKdVolume(double eta, double gamma_v) {
-    const double kd = problem_.init[j_].kd;
-    const RowValues& p = P(eta, gamma_v);
-    const RowValues& r = R(eta);
-    RowValues out(p.size());
-    for (size_t i = 0; i < p.size(); ++i) out[i] = (1.0 - kd) * p[i] + kd * r[i];
-    return out;
+
+  const ThreadVectors& Thread(size_t j) const { return threads_[j]; }
+
+  // Solves the linear parameters for one grid index pair (gamma_s index,
+  // gamma_v index) per thread; fills *point and returns its cost.
+  double Evaluate(const std::vector<std::pair<int, int>>& choice,
+                  StartPoint* point) const {
+    const StartSearchProblem& problem = problem_;
+    const int channels = problem.table->channels;
+    const size_t n = choice.size();
+    // Columns of the design: albedos (shared or per thread with a free
+    // albedo), B_j = A_j kd_j for threads with kd free, then the scale; the
+    // constant part holds the surfaces and the volumes of fixed albedos.
+    std::vector<int> a_index(n, -1), b_index(n, -1);
+    int m = 0, shared_index = -1;
+    for (size_t j = 0; j < n; ++j) {
+      if (!problem.albedo_free[j]) continue;
+      if (problem.shared_albedo) {
+        if (shared_index < 0) shared_index = m++;
+        a_index[j] = shared_index;
+      } else {
+        a_index[j] = m++;
+      }
+    }
+    for (size_t j = 0; j < n; ++j) {
+      if (a_index[j] >= 0 && problem.kd_free[j]) b_index[j] = m++;
+    }
+    const int s_index = problem.fit_scale ? m++ : -1;
+
+    point->threads = problem.init;
+    point->scale = 1.0;
+    std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
+    double scale_sum = 0.0;
+    for (int c = 0; c < channels; ++c) {
+      std::vector<Combination> column(m);
+      Combination constant;
+      for (size_t j = 0; j < n; ++j) {
+        const ThreadVectors& t = threads_[j];
+        const size_t surface = t.surface[choice[j].first];
+        const size_t p = t.p[choice[j].second];
+        constant.push_back({surface, 1.0});
+        const double kd = problem.init[j].kd;
+        if (a_index[j] < 0) {  // fixed albedo: a known volume
+          const double a = problem.init[j].albedo[c];
+          constant.push_back({p, a * (1.0 - kd)});
+          constant.push_back({t.r, a * kd});
+        } else if (b_index[j] < 0) {  // fixed kd
+          column[a_index[j]].push_back({p, 1.0 - kd});
+          column[a_index[j]].push_back({t.r, kd});
+        } else {
+          column[a_index[j]].push_back({p, 1.0});
+          column[b_index[j]].push_back({t.r, 1.0});
+          column[b_index[j]].push_back({p, -1.0});
+        }
+      }
+      if (s_index >= 0) column[s_index] = constant;
+      std::vector<double> ata(m * m), atb(m);
+      for (int a = 0; a < m; ++a) {
+        atb[a] = DotY(*gram_, c, column[a]);
+        if (s_index < 0) atb[a] -= Dot(*gram_, c, column[a], constant);
+        for (int b = 0; b < m; ++b) {
+          ata[a * m + b] = Dot(*gram_, c, column[a], column[b]);
+        }
+      }
+      std::vector<double> x(m, 0.0);
+      if (s_index >= 0) x[s_index] = 1.0;
+      for (int sweep = 0; sweep < 200; ++sweep) {  // projected Gauss-Seidel
+        for (int a = 0; a < m; ++a) {
+          if (!(ata[a * m + a] > 0.0)) continue;
+          double rhs = atb[a];
+          for (int b = 0; b < m; ++b) {
+            if (b != a) rhs -= ata[a * m + b] * x[b];
+          }
+          double lo = a == s_index ? 1e-6 : 0.0, hi = 1e6;
+          for (size_t j = 0; j < n; ++j) {
+            if (b_index[j] == a) hi = x[a_index[j]];  // 0 <= B_j <= A_j
+          }
+          x[a] = std::clamp(rhs / ata[a * m + a], lo, std::max(lo, hi));
+        }
+      }
+      const double s = s_index >= 0 ? x[s_index] : 1.0;
+      scale_sum += s;
+      for (size_t j = 0; j < n; ++j) {
+        if (a_index[j] >= 0) a_out[j][c] = x[a_index[j]] / s;
+        if (b_index[j] >= 0) b_out[j][c] = x[b_index[j]] / s;
+      }
+    }
+    if (s_index >= 0) point->scale = scale_sum / channels;
+    for (size_t j = 0; j < n; ++j) {
+      ThreadParams& tp = point->threads[j];
+      tp.gamma_s_deg = threads_[j].gamma_s[choice[j].first];
+      tp.gamma_v_deg = threads_[j].gamma_v[choice[j].second];
+      if (a_index[j] < 0) continue;
+      for (int c = 0; c < 3; ++c) {
+        tp.albedo[c] = std::min(a_out[j][std::min(c, channels - 1)], 1e3);
+      }
+      if (b_index[j] >= 0) {  // one kd for all channels
+        double a = 0.0, b = 0.0;
+        for (int c = 0; c < channels; ++c) {
+          a += a_out[j][c];
+          b += b_out[j][c];
+        }
+        tp.kd = a > 0.0 ? std::clamp(b / a, 0.0, 1.0) : tp.kd;
+      }
+    }
+    // The exact cost of these parameters: |s model - y|^2 from the sums.
+    double cost = 0.0;
+    for (int c = 0; c < channels; ++c) {
+      Combination model;
+      for (size_t j = 0; j < n; ++j) {
+        const ThreadParams& tp = point->threads[j];
+        const ThreadVectors& t = threads_[j];
+        model.push_back({t.surface[choice[j].first], point->scale});
+        model.push_back({t.p[choice[j].second],
+                         point->scale * tp.albedo[c] * (1.0 - tp.kd)});
+        model.push_back({t.r, point->scale * tp.albedo[c] * tp.kd});
+      }
+      cost += Dot(*gram_, c, model, model) - 2.0 * DotY(*gram_, c, model) +
+              gram_->YY(c);
+    }
+    point->cost = std::isfinite(cost) ? std::max(cost, 0.0) : HUGE_VAL;
+    return point->cost;
   }
 
  private:
-  ThreadParams Base(double eta) const {
-    ThreadParams p = problem_.init[j_];
-    p.eta = eta;
-    return p;
-  }
-  static RowValues Minus(RowValues a, const RowValues& b) {
-    for (size_t i = 0; i < a.size(); ++i) a[i] -= b[i];
-    return a;
-  }
-
   const StartSearchProblem& problem_;
-  size_t j_;
-  std::map<std::pair<double, double>, RowValues> surface_, p_;
-  std::map<double, RowValues> r_;
+  std::vector<ThreadVectors> threads_;
+  std::unique_ptr<Gram> gram_;
 };
-
-// Solves the linear parameters for one choice per thread; returns the cost
-// and fills *point.
-double SolveLinear(const StartSearchProblem& problem,
-                   std::vector<ThreadBasis>& bases,
-                   const std::vector<Choice>& choice, StartPoint* point) {
-  const MeasurementTable& table = *problem.table;
-  const size_t n = choice.size();
-  const size_t rows = table.rows.size();
-  // Constant part (surfaces, and volumes of threads with fixed albedo).
-  RowValues constant(rows, glm::dvec3(0.0));
-  std::vector<const RowValues*> p(n, nullptr), r(n, nullptr);
-  std::vector<RowValues> fixed_kd(n);
-  for (size_t j = 0; j < n; ++j) {
-    const Choice& c = choice[j];
-    const RowValues& surface = bases[j].Surface(c.eta, c.gamma_s);
-    for (size_t i = 0; i < rows; ++i) constant[i] += surface[i];
-    if (problem.kd_free[j] && problem.albedo_free[j]) {
-      p[j] = &bases[j].P(c.eta, c.gamma_v);
-      r[j] = &bases[j].R(c.eta);
-    } else {
-      fixed_kd[j] = bases[j].FixedKdVolume(c.eta, c.gamma_v);
-      p[j] = &fixed_kd[j];
-      if (!problem.albedo_free[j]) {
-        const glm::dvec3 a = problem.init[j].albedo;
-        for (size_t i = 0; i < rows; ++i) constant[i] += a * fixed_kd[j][i];
-      }
-    }
-  }
-  // Unknowns per channel: albedos (one shared, or one per thread with a free
-  // albedo), B_j for threads with kd free, then the scale.
-  std::vector<int> a_index(n, -1), b_index(n, -1);
-  int m = 0;
-  int shared_index = -1;
-  for (size_t j = 0; j < n; ++j) {
-    if (!problem.albedo_free[j]) continue;
-    if (problem.shared_albedo) {
-      if (shared_index < 0) shared_index = m++;
-      a_index[j] = shared_index;
-    } else {
-      a_index[j] = m++;
-    }
-  }
-  for (size_t j = 0; j < n; ++j) {
-    if (a_index[j] >= 0 && problem.kd_free[j]) b_index[j] = m++;
-  }
-  const int s_index = problem.fit_scale ? m++ : -1;
-
-  point->threads = problem.init;
-  std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
-  double scale_sum = 0.0;
-  for (int ch = 0; ch < table.channels; ++ch) {
-    std::vector<double> ata(m * m, 0.0), atb(m, 0.0), basis(m);
-    for (size_t i = 0; i < rows; ++i) {
-      const TableRow& row = table.rows[i];
-      const double w = row.weight / (row.sigma[ch] * row.sigma[ch]);
-      std::fill(basis.begin(), basis.end(), 0.0);
-      for (size_t j = 0; j < n; ++j) {
-        if (a_index[j] >= 0) basis[a_index[j]] += (*p[j])[i][ch];
-        if (b_index[j] >= 0) basis[b_index[j]] = (*r[j])[i][ch] - (*p[j])[i][ch];
-      }
-      double target = row.value[ch];
-      if (s_index >= 0) {
-        basis[s_index] = constant[i][ch];
-      } else {
-        target -= constant[i][ch];
-      }
-      for (int a = 0; a < m; ++a) {
-        atb[a] += w * basis[a] * target;
-        for (int b = 0; b < m; ++b) ata[a * m + b] += w * basis[a] * basis[b];
-      }
-    }
-    std::vector<double> x(m, 0.0);
-    if (s_index >= 0) x[s_index] = 1.0;
-    for (int sweep = 0; sweep < 200; ++sweep) {  // projected Gauss-Seidel
-      for (int a = 0; a < m; ++a) {
-        if (!(ata[a * m + a] > 0.0)) continue;
-        double rhs = atb[a];
-        for (int b = 0; b < m; ++b) {
-          if (b != a) rhs -= ata[a * m + b] * x[b];
-        }
-        double lo = a == s_index ? 1e-6 : 0.0, hi = 1e6;
-        for (size_t j = 0; j < n; ++j) {
-          if (b_index[j] == a) hi = x[a_index[j]];  // 0 <= B_j <= A_j
-        }
-        x[a] = std::clamp(rhs / ata[a * m + a], lo, std::max(lo, hi));
-      }
-    }
-    const double s = s_index >= 0 ? x[s_index] : 1.0;
-    scale_sum += s;
-    for (size_t j = 0; j < n; ++j) {
-      if (a_index[j] >= 0) a_out[j][ch] = x[a_index[j]] / s;
-      if (b_index[j] >= 0) b_out[j][ch] = x[b_index[j]] / s;
-    }
-  }
-  point->scale = s_index >= 0 ? scale_sum / table.channels : 1.0;
-  for (size_t j = 0; j < n; ++j) {
-    ThreadParams& tp = point->threads[j];
-    tp.eta = choice[j].eta;
-    tp.gamma_s_deg = choice[j].gamma_s;
-    tp.gamma_v_deg = choice[j].gamma_v;
-    if (a_index[j] < 0) continue;
-    for (int ch = 0; ch < 3; ++ch) {
-      tp.albedo[ch] = std::min(a_out[j][std::min(ch, table.channels - 1)], 1e3);
-    }
-    if (b_index[j] >= 0) {
-      double a = 0.0, b = 0.0;
-      for (int ch = 0; ch < table.channels; ++ch) {
-        a += a_out[j][ch];
-        b += b_out[j][ch];
-      }
-      tp.kd = a > 0.0 ? std::clamp(b / a, 0.0, 1.0) : tp.kd;
-    }
-  }
-  // The exact cost of the resulting parameters (kd shared over channels).
-  double cost = 0.0;
-  for (size_t i = 0; i < rows; ++i) {
-    glm::dvec3 model(0.0);
-    for (size_t j = 0; j < n; ++j) {
-      const ThreadParams& tp = point->threads[j];
-      model += bases[j].Surface(tp.eta, tp.gamma_s_deg)[i];
-      const glm::dvec3 pv = bases[j].P(tp.eta, tp.gamma_v_deg)[i];
-      const glm::dvec3 rv = bases[j].R(tp.eta)[i];
-      model += tp.albedo * ((1.0 - tp.kd) * pv + tp.kd * rv);
-    }
-    const TableRow& row = table.rows[i];
-    for (int ch = 0; ch < table.channels; ++ch) {
-      const double d = (point->scale * model[ch] - row.value[ch]) / row.sigma[ch];
-      cost += row.weight * d * d;
-    }
-  }
-  point->cost = std::isfinite(cost) ? cost : HUGE_VAL;
-  return point->cost;
-}
 
 }  // namespace
 
 std::vector<StartPoint> SearchStarts(const StartSearchProblem& problem,
                                      int keep) {
   const size_t n = problem.init.size();
-  // Widths a factor sqrt(2) apart: narrow specular lobes need the finer step.
-  std::vector<double> kWidths;
-  for (double w = 1.0; w <= 90.0; w *= std::sqrt(2.0)) kWidths.push_back(w);
-  std::vector<std::vector<Choice>> grids(n);
-  std::vector<Choice> current(n);
+  const Search search(problem);
+  // Start at each thread's initial widths (in its grid by construction).
+  std::vector<std::pair<int, int>> current(n);
   for (size_t j = 0; j < n; ++j) {
+    const ThreadVectors& t = search.Thread(j);
     const ThreadParams& p = problem.init[j];
-    // eta: its initial value only. Its effect (Fresnel) is mild and smooth,
-    // the solver refines it, and a grid over it tripled the search time.
-    for (double eta : {p.eta}) {
-      for (double gs : Grid(problem.gamma_s_free[j], p.gamma_s_deg, kWidths)) {
-        for (double gv : Grid(problem.gamma_v_free[j], p.gamma_v_deg, kWidths)) {
-          grids[j].push_back({eta, gs, gv});
-        }
-      }
-    }
-    current[j] = {p.eta, p.gamma_s_deg, p.gamma_v_deg};
+    current[j].first = static_cast<int>(
+        std::find(t.gamma_s.begin(), t.gamma_s.end(), p.gamma_s_deg) -
+        t.gamma_s.begin());
+    current[j].second = static_cast<int>(
+        std::find(t.gamma_v.begin(), t.gamma_v.end(), p.gamma_v_deg) -
+        t.gamma_v.begin());
   }
-  std::vector<ThreadBasis> bases;
-  for (size_t j = 0; j < n; ++j) bases.emplace_back(problem, j);
-
-  // Coordinate descent over the threads; every evaluated point is kept.
-  std::map<std::vector<Choice>, StartPoint> seen;
-  auto evaluate = [&](const std::vector<Choice>& c) -> double {
+  // Coordinate descent over the threads: each thread's best grid point
+  // with the others held, until nothing changes. Every evaluated point is
+  // kept; the starts are chosen among them.
+  std::map<std::vector<std::pair<int, int>>, StartPoint> seen;
+  auto evaluate = [&](const std::vector<std::pair<int, int>>& c) {
     auto it = seen.find(c);
     if (it != seen.end()) return it->second.cost;
     StartPoint point;
-    SolveLinear(problem, bases, c, &point);
-    seen[c] = point;
-    return point.cost;
+    search.Evaluate(c, &point);
+    return seen.emplace(c, point).first->second.cost;
   };
   double best = evaluate(current);
-  for (int round = 0; round < 4; ++round) {
+  for (int round = 0; round < 8; ++round) {
     bool changed = false;
     for (size_t j = 0; j < n; ++j) {
-      for (const Choice& option : grids[j]) {
-        std::vector<Choice> trial = current;
-        trial[j] = option;
-        const double cost = evaluate(trial);
-        if (cost < best) {
-          best = cost;
-          current = trial;
-          changed = true;
+      const ThreadVectors& t = search.Thread(j);
+      for (int a = 0; a < static_cast<int>(t.gamma_s.size()); ++a) {
+        for (int b = 0; b < static_cast<int>(t.gamma_v.size()); ++b) {
+          std::vector<std::pair<int, int>> trial = current;
+          trial[j] = {a, b};
+          const double cost = evaluate(trial);
+          if (cost < best) {
+            best = cost;
+            current = trial;
+            changed = true;
+          }
         }
       }
     }

@@ -3,15 +3,16 @@
 //
 // Each thread j adds a contribution c_j(p) to every row's model value, and
 // c_j is linear in the albedo A and in B = A kd (eq. 4):
-//   c_j = surface_j(eta, gamma_s) + A P_j(eta, gamma_v) + B (R_j(eta) - P_j)
+//   c_j = surface_j(gamma_s) + A P_j(gamma_v) + B (R_j - P_j)
 // with surface = c_j(A = 0), P = c_j(A = 1, kd = 0) - surface and R =
-// c_j(A = 1, kd = 1) - surface (R does not depend on gamma_v). So for given
-// (eta, gamma_s, gamma_v) per thread the best albedos, kd and scale follow
-// from a small non-negative least-squares problem, and the grid over the
-// widths needs only surface(gamma_s) and P(gamma_v) per grid value:
-// a handful of model evaluations per thread, not one per grid point.
-// Coordinate descent over the threads picks each thread's grid point with
-// the others held; the best distinct results are the starts for Ceres.
+// c_j(A = 1, kd = 1) - surface (R depends on neither width; eta stays at
+// its initial value). So for given widths per thread the best albedos, kd
+// and scale follow from a small non-negative least-squares problem. The
+// basis vectors (one surface per gamma_s and one P per gamma_v of the grid,
+// and R) are evaluated once, and their weighted inner products make every
+// such problem independent of the number of rows. Coordinate descent over
+// the threads picks each thread's grid point with the others held; the
+// best distinct results are the starts for Ceres.
 #pragma once
 
 #include <functional>
@@ -29,8 +30,9 @@ struct StartSearchProblem {
   // Thread j's contribution to each row's model value with parameters p.
   std::function<RowValues(size_t j, const ThreadParams& p)> contribution;
   std::vector<ThreadParams> init;  // per thread; fixed entries keep these
-  // Per thread: which of eta, kd, gamma_s_deg, gamma_v_deg, albedo are free.
-  std::vector<bool> eta_free, kd_free, gamma_s_free, gamma_v_free, albedo_free;
+  // Per thread: which of kd, gamma_s_deg, gamma_v_deg, albedo are free
+  // (eta stays at its initial value in the search).
+  std::vector<bool> kd_free, gamma_s_free, gamma_v_free, albedo_free;
   bool shared_albedo = false;  // one albedo for every thread
   bool fit_scale = false;      // a free factor on the whole model
 };
@@ -43,8 +45,8 @@ struct StartPoint {
 
 // The `keep` best distinct starting points (some width a factor of 2 or
 // more apart from every better one), best first. Grid: widths 1, 1.41, 2,
-// 2.83, ..., 64 degrees (a factor sqrt(2) apart, and the initial value)
-// when free; eta stays at its initial value (the solver refines it).
+// 2.83, ..., 90 degrees (a factor sqrt(2) apart) and the initial value,
+// for free widths.
 std::vector<StartPoint> SearchStarts(const StartSearchProblem& problem,
                                      int keep);
 

@@ -1,6 +1,7 @@
 #include "fitting/thread_fit.h"
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 
 #include <ceres/ceres.h>
@@ -64,6 +65,7 @@ std::vector<ParameterSpec> ThreadSpecs() {
 
 ThreadFitResult FitThread(const MeasurementTable& table,
                           const ThreadFitOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();  // search + solves
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError("a thread model predicts brdf or cosine_weighted "
                      "values, not transmittance");
@@ -117,7 +119,6 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     }
     return v;
   };
-  search.eta_free = {lsq.specs[0].free};
   search.kd_free = {lsq.specs[1].free};
   search.gamma_s_free = {lsq.specs[2].free};
   search.gamma_v_free = {lsq.specs[3].free};
@@ -145,6 +146,9 @@ ThreadFitResult FitThread(const MeasurementTable& table,
       }
     }
   }
+  result.report.seconds = std::chrono::duration<double>(
+                              std::chrono::steady_clock::now() - t0)
+                              .count();
   return result;
 }
 

@@ -239,25 +239,28 @@ TangentSample<G> ComputeTangentSample(ThreadDirection direction,
 // Thread j's sums of eq. 11-12 over its samples: S_j = (1/T_j) sum_t f_s M
 // P cos(theta_i) and W_j = (1/T_j) sum_t P (both 0 without samples).
 // `samples.Count(j)` and `samples.Get(j, k)` give thread j's samples (a
-// TangentSample<G>), and `samples.Bsdf(j, k, sample, params)` their thread
-// BSDF (ThreadBsdf, or the same with a Fresnel term computed once).
+// TangentSample<G>), and `samples.Lobes(j, k, sample, params)` their
+// ThreadLobes (ThreadLobesOf, or the same with a Fresnel term computed
+// once). The lobes are summed as scalars and the albedo applied once.
 template <typename T, typename G, typename Samples>
 void ThreadSums(const ThreadParamsT<T>& params, const Samples& samples,
                 size_t j, Vec3<T>* s_j, G* w_j) {
-  *s_j = Vec3<T>(T(0.0));
-  *w_j = G(0.0);
+  T surface(0.0), volume(0.0);
+  G w(0.0);
   const int count = samples.Count(j);
-  if (count == 0) return;
   for (int k = 0; k < count; ++k) {
     const TangentSample<G>& sample = samples.Get(j, k);
     if (!sample.valid) continue;
-    *w_j += sample.reweight;
+    w += sample.reweight;
     if (sample.weight > G(0.0)) {
-      *s_j += samples.Bsdf(j, k, sample, params) * T(sample.weight);
+      const ThreadLobes<T> lobes = samples.Lobes(j, k, sample, params);
+      surface += lobes.surface * T(sample.weight);
+      volume += lobes.volume * T(sample.weight);
     }
   }
-  *s_j = *s_j * T(1.0 / count);
-  *w_j = *w_j * G(1.0 / count);
+  const double inv_count = count > 0 ? 1.0 / count : 0.0;
+  *s_j = (Vec3<T>(surface) + params.albedo * volume) * T(inv_count);
+  *w_j = w * G(inv_count);
 }
 
 // rho from the samples of every thread (eq. 11-13): sum_j a_j S_j / Q with
@@ -302,9 +305,9 @@ Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
       const ClothThreadT<T>& th = cloth.threads[j];
       return ComputeTangentSample(th.direction, th.offsets_deg[k], wi, wo);
     }
-    Vec3<T> Bsdf(size_t, int, const TangentSample<T>& sample,
-                 const ThreadParamsT<T>& params) const {
-      return ThreadBsdf(sample.geometry, params);
+    ThreadLobes<T> Lobes(size_t, int, const TangentSample<T>& sample,
+                         const ThreadParamsT<T>& params) const {
+      return ThreadLobesOf(sample.geometry, params);
     }
   };
   return ClothRhoFromSamples(cloth, OnTheFly{cloth, wi, wo}, wi.z);

@@ -225,31 +225,46 @@ T ThreadFresnel(const ThreadGeometry<G>& g, const T& eta) {
   return FresnelDielectric(T(sqrt(g.cos2_theta_d) * g.cos_half_phi_d), eta);
 }
 
-// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4), given
-// the Fresnel reflectance fr = ThreadFresnel(g, p.eta). The geometry's
-// scalar type G and fr's type F may differ from the parameters' T: a fit
-// with fixed directions (and fixed eta) computes them once in double and
-// evaluates only the parameter-dependent part with Jets.
+// The two lobes of the thread BSDF for a valid geometry, f_s = surface +
+// volume * albedo per channel (eq. 2-4, already divided by cos^2(theta_d)),
+// given the Fresnel reflectance fr = ThreadFresnel(g, p.eta). Kept apart so
+// that sums over tangent samples stay scalar until the albedo is applied.
+// The geometry's scalar type G and fr's type F may differ from the
+// parameters' T: a fit with fixed directions (and fixed eta) computes them
+// once in double and evaluates only the parameter-dependent part with Jets.
+template <typename T>
+struct ThreadLobes {
+  T surface;  // f_rs / cos^2(theta_d)
+  T volume;   // f_rv / (albedo cos^2(theta_d))
+};
+
 template <typename T, typename G, typename F>
-Vec3<T> ThreadBsdfGivenFresnel(const ThreadGeometry<G>& g, const F& fr,
-                               const ThreadParamsT<T>& p) {
+ThreadLobes<T> ThreadLobesGivenFresnel(const ThreadGeometry<G>& g, const F& fr,
+                                       const ThreadParamsT<T>& p) {
   const T gamma_s = Radians(p.gamma_s_deg);
   const T gamma_v = Radians(p.gamma_v_deg);
   const T theta_h(g.theta_h);
-  const T f_rs =
-      T(fr * g.cos_half_phi_d) * NormalizedGaussian(gamma_s, theta_h);
-  const T volume = T(Sqr(F(1.0) - fr) / (g.cos_theta_i + g.cos_theta_o)) *
-                   ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, theta_h) +
-                    p.kd);
   const G inv_cos2 = G(1.0) / g.cos2_theta_d;
-  return Vec3<T>(f_rs + volume * p.albedo.x, f_rs + volume * p.albedo.y,
-                 f_rs + volume * p.albedo.z) *
-         T(inv_cos2);
+  ThreadLobes<T> lobes;
+  lobes.surface = T(fr * g.cos_half_phi_d * inv_cos2) *
+                  NormalizedGaussian(gamma_s, theta_h);
+  lobes.volume =
+      T(Sqr(F(1.0) - fr) * inv_cos2 / (g.cos_theta_i + g.cos_theta_o)) *
+      ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, theta_h) + p.kd);
+  return lobes;
 }
 
 template <typename T, typename G>
+ThreadLobes<T> ThreadLobesOf(const ThreadGeometry<G>& g,
+                             const ThreadParamsT<T>& p) {
+  return ThreadLobesGivenFresnel(g, ThreadFresnel(g, p.eta), p);
+}
+
+// Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4).
+template <typename T, typename G>
 Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
-  return ThreadBsdfGivenFresnel(g, ThreadFresnel(g, p.eta), p);
+  const ThreadLobes<T> lobes = ThreadLobesOf(g, p);
+  return Vec3<T>(lobes.surface) + p.albedo * lobes.volume;
 }
 
 // The thread BSDF in the thread frame of SPEC §2 (tangent +x, normal +z):
