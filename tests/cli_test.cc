@@ -545,5 +545,93 @@ TEST(CliTest, SynthRejectsZeroRows) {
                  {"rows"});
 }
 
+// clothfit fit: a synthetic table from a thread file, fitted from the
+// default start; the result file holds the recovered parameters and a
+// "fit" object with standard deviations.
+fs::path DirWithThreadTable() {
+  const fs::path dir = TestDir();
+  WriteText(dir / "truth.json",
+            "{\"model\": \"thread\", \"eta\": 1.5, \"kd\": 0.2, "
+            "\"gamma_s_deg\": 6, \"gamma_v_deg\": 14, "
+            "\"albedo\": [0.3, 0.2, 0.1]}");
+  const RunResult synth = RunClothfit(
+      dir, {"synth", "--params", (dir / "truth.json").string(), "--rows",
+            "1500", "--noise", "0.01", "--seed", "4", "--out",
+            (dir / "T.csv").string()});
+  EXPECT_EQ(synth.status, 0) << Describe(synth);
+  return dir;
+}
+
+TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
+  const fs::path dir = DirWithThreadTable();
+  const RunResult r = RunClothfit(
+      dir, {"fit", "--model", "thread", "--data", (dir / "T.csv").string(),
+            "--out", (dir / "fit.json").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.out.find("gamma_s_deg"), std::string::npos);  // the summary
+  const ParamFile fit = ReadParamFile((dir / "fit.json").string());
+  const ThreadParams& p = std::get<ThreadParams>(fit.params);
+  EXPECT_NEAR(p.eta, 1.5, 0.05 * 1.5);
+  EXPECT_NEAR(p.kd, 0.2, 0.05);
+  EXPECT_NEAR(p.gamma_s_deg, 6.0, 0.05 * 6.0);
+  EXPECT_NEAR(p.gamma_v_deg, 14.0, 0.05 * 14.0);
+  EXPECT_NEAR(p.albedo.x, 0.3, 0.03 * 0.3);
+  for (const char* key : {"\"stddev\"", "\"relative_rms\"", "\"iterations\"",
+                          "\"seconds\"", "\"termination\"", "\"gamma_s_deg\""}) {
+    EXPECT_NE(fit.fit_json.find(key), std::string::npos) << key;
+  }
+  EXPECT_EQ(fit.fit_json.find("nan"), std::string::npos);
+}
+
+TEST(CliTest, FitClothFromPresetWeaveWithToleranceReportsCandidates) {
+  const fs::path dir = TestDir();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "linen_plain", "--rows",
+                              "1000", "--noise", "0.02", "--out",
+                              (dir / "T.csv").string()})
+                .status,
+            0);
+  const RunResult r = RunClothfit(
+      dir, {"fit", "--model", "cloth", "--data", (dir / "T.csv").string(),
+            "--preset", "linen_plain", "--generic-start", "--tolerance",
+            "0.05", "--out", (dir / "fit.json").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.out.find("model selection"), std::string::npos);
+  const ParamFile fit = ReadParamFile((dir / "fit.json").string());
+  EXPECT_TRUE(std::holds_alternative<ClothParams>(fit.params));
+  EXPECT_NE(fit.fit_json.find("\"selection\""), std::string::npos);
+  EXPECT_NE(fit.fit_json.find("\"bic\""), std::string::npos);
+}
+
+TEST(CliTest, FitThatDoesNotConvergeExitsOne) {
+  const fs::path dir = DirWithThreadTable();
+  const RunResult r = RunClothfit(
+      dir, {"fit", "--model", "thread", "--data", (dir / "T.csv").string(),
+            "--max-iterations", "1", "--out", (dir / "fit.json").string()});
+  EXPECT_EQ(r.status, 1) << Describe(r);
+  EXPECT_NE(r.err.find("without converging"), std::string::npos) << r.err;
+}
+
+TEST(CliTest, FitBadUsage) {
+  const fs::path dir = DirWithThreadTable();
+  const std::string data = (dir / "T.csv").string();
+  const std::string out = (dir / "fit.json").string();
+  ExpectBadInput(dir, {"fit", "--model", "lobes", "--data", data, "--out", out},
+                 {"--model", "lobes"});
+  ExpectBadInput(dir, {"fit", "--model", "cloth", "--data", data, "--out", out},
+                 {"--init", "--preset"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--fix",
+                  "roughness", "--out", out},
+                 {"roughness"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data",
+                  (dir / "missing.csv").string(), "--out", out},
+                 {"missing.csv"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--loss", "l1",
+                  "--out", out},
+                 {"--loss"});
+}
+
 }  // namespace
 }  // namespace clothfit
