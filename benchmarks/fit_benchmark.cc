@@ -14,17 +14,12 @@
 namespace clothfit {
 namespace {
 
-MeasurementTable Table(const ModelParams& truth, int rows, bool thread) {
-  Random random(11);
+MeasurementTable Table(const ModelParams& truth, int rows) {
   DirectionSampling sampling;
   sampling.rows = rows;
-  sampling.full_sphere_out = thread;
-  MeasurementTable table;
-  table.rows = SampleDirections(sampling, &random);
   SynthOptions synth;
   synth.noise = 0.02;
-  SynthesizeValues(truth, synth, &random, &table);
-  return table;
+  return SyntheticTable(truth, sampling, synth, 11);
 }
 
 void BM_ThreadFit(benchmark::State& state) {
@@ -35,7 +30,7 @@ void BM_ThreadFit(benchmark::State& state) {
   truth.gamma_v_deg = 5.0;
   truth.albedo = glm::dvec3(0.035, 0.01295, 0.0105);
   const MeasurementTable table =
-      Table(truth, static_cast<int>(state.range(0)), true);
+      Table(truth, static_cast<int>(state.range(0)));
   for (auto _ : state) {
     const ThreadFitResult r = FitThread(table, ThreadFitOptions());
     if (!r.report.converged) state.SkipWithError("fit did not converge");
@@ -48,7 +43,7 @@ void BM_ClothFit(benchmark::State& state, const char* preset) {
   ClothParams truth;
   GetPreset(preset, &truth);
   const MeasurementTable table =
-      Table(truth, static_cast<int>(state.range(0)), false);
+      Table(truth, static_cast<int>(state.range(0)));
   const ClothParams start = GenericClothStart(truth);
   for (auto _ : state) {
     const ClothFitResult r = FitCloth(table, start, ClothFitOptions());

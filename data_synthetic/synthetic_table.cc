@@ -106,4 +106,15 @@ void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
   }
 }
 
+MeasurementTable SyntheticTable(const ModelParams& params,
+                                DirectionSampling sampling,
+                                const SynthOptions& options, uint64_t seed) {
+  Random random(seed);
+  sampling.full_sphere_out = std::holds_alternative<ThreadParams>(params);
+  MeasurementTable table;
+  table.rows = SampleDirections(sampling, &random);
+  SynthesizeValues(params, options, &random, &table);
+  return table;
+}
+
 }  // namespace clothfit

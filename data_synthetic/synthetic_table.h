@@ -54,4 +54,10 @@ struct SynthOptions {
 void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
                       Random* random, MeasurementTable* table);
 
+// Both in one call, from a seed: `sampling.rows` random direction pairs
+// (wo over the whole sphere for a thread model) and the model's values.
+MeasurementTable SyntheticTable(const ModelParams& params,
+                                DirectionSampling sampling,
+                                const SynthOptions& options, uint64_t seed);
+
 }  // namespace clothfit

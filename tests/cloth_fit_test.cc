@@ -17,11 +17,16 @@
 #include <gtest/gtest.h>
 
 #include "data_synthetic/synthetic_table.h"
+#include "tests/fit_test_util.h"
 #include "io/input_error.h"
 #include "models/presets.h"
 
 namespace clothfit {
 namespace {
+
+using testing_util::Contains;
+using testing_util::NoisyTable;
+using testing_util::UndeterminedNames;
 
 constexpr int kRows = 2000;
 constexpr double kNoiseFreeTolerance = 1e-3;  // relative
@@ -39,33 +44,16 @@ ClothParams Preset(const std::string& name) {
   return cloth;
 }
 
-// The default start: the preset's weave (directions, coverages, tangent
-// offsets, eta) with every thread at kd 0.3, gamma_s_deg 10, gamma_v_deg 20,
-// albedo 0.1.
+// The default start: the preset's weave with generic thread parameters.
 ClothParams GenericStart(const ClothParams& weave) {
-  ClothParams c = weave;
-  for (ClothThread& th : c.threads) {
-    th.params.kd = 0.3;
-    th.params.gamma_s_deg = 10.0;
-    th.params.gamma_v_deg = 20.0;
-    th.params.albedo = glm::dvec3(0.1);
-  }
-  return c;
+  return GenericClothStart(weave);
 }
 
 // A synthetic cloth table: `rows` directions over the upper hemisphere (5 %
 // of them at grazing), brdf values of `truth`, multiplicative noise.
 MeasurementTable ClothTable(const ClothParams& truth, double noise,
                             uint64_t seed, int rows = kRows) {
-  Random random(seed);
-  DirectionSampling sampling;
-  sampling.rows = rows;
-  MeasurementTable table;
-  table.rows = SampleDirections(sampling, &random);
-  SynthOptions synth;
-  synth.noise = noise;
-  SynthesizeValues(truth, synth, &random, &table);
-  return table;
+  return NoisyTable(truth, noise, seed, rows);
 }
 
 void Note(const std::string& key, const std::string& text) {
@@ -242,24 +230,6 @@ void ExpectAllFinite(const ClothFitResult& result) {
   const std::string json = FitReportJson(r);
   EXPECT_EQ(json.find("nan"), std::string::npos) << json;
   EXPECT_EQ(json.find("inf"), std::string::npos) << json;
-}
-
-// The names listed by FitReport::identifiability ("not identifiable: a, b").
-std::vector<std::string> UndeterminedNames(const std::string& text) {
-  std::vector<std::string> names;
-  const size_t colon = text.find(':');
-  if (colon == std::string::npos) return names;
-  std::stringstream list(text.substr(colon + 1));
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    const size_t b = name.find_first_not_of(' ');
-    if (b != std::string::npos) names.push_back(name.substr(b));
-  }
-  return names;
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& n) {
-  return std::find(names.begin(), names.end(), n) != names.end();
 }
 
 // ---------------------------------------------------------------------------

@@ -5,21 +5,13 @@
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/model_selection.h"
 #include "models/presets.h"
+#include "tests/fit_test_util.h"
 
 namespace clothfit {
 namespace {
 
-MeasurementTable Table(const ModelParams& truth, bool thread, uint64_t seed) {
-  Random random(seed);
-  DirectionSampling sampling;
-  sampling.rows = 2000;
-  sampling.full_sphere_out = thread;
-  MeasurementTable table;
-  table.rows = SampleDirections(sampling, &random);
-  SynthOptions synth;
-  synth.noise = 0.02;
-  SynthesizeValues(truth, synth, &random, &table);
-  return table;
+MeasurementTable Table(const ModelParams& truth, uint64_t seed) {
+  return testing_util::NoisyTable(truth, 0.02, seed, 2000);
 }
 
 const CandidateReport& Chosen(const SelectionReport& r) {
@@ -29,7 +21,7 @@ const CandidateReport& Chosen(const SelectionReport& r) {
 TEST(ThreadSelection, KdZeroDataChooseKdZero) {
   ThreadParams truth;
   truth.kd = 0.0;
-  const MeasurementTable table = Table(truth, true, 5);
+  const MeasurementTable table = Table(truth, 5);
   const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
   EXPECT_EQ(Chosen(s.report).description, "kd=0");
   EXPECT_TRUE(Chosen(s.report).meets_tolerance);
@@ -43,7 +35,7 @@ TEST(ThreadSelection, KdZeroDataChooseKdZero) {
 TEST(ThreadSelection, IntermediateKdNeedsKdFree) {
   ThreadParams truth;
   truth.kd = 0.5;
-  const MeasurementTable table = Table(truth, true, 6);
+  const MeasurementTable table = Table(truth, 6);
   const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
   ASSERT_EQ(s.report.candidates.size(), 3u);
   EXPECT_FALSE(s.report.candidates[0].meets_tolerance);  // kd=0
@@ -59,7 +51,7 @@ TEST(ThreadSelection, IntermediateKdNeedsKdFree) {
 TEST(ThreadSelection, UnreachableToleranceKeepsLowestBicAndSaysSo) {
   ThreadParams truth;
   truth.kd = 0.5;
-  const MeasurementTable table = Table(truth, true, 7);
+  const MeasurementTable table = Table(truth, 7);
   // 2 % noise: no model reaches 0.1 % relative error.
   const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.001);
   ASSERT_EQ(s.report.candidates.size(), 3u);
@@ -75,7 +67,7 @@ TEST(ThreadSelection, UnreachableToleranceKeepsLowestBicAndSaysSo) {
 TEST(ClothSelection, SameColouredThreadsShareTheAlbedo) {
   ClothParams linen;  // both threads have the same parameters
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
-  const MeasurementTable table = Table(linen, false, 8);
+  const MeasurementTable table = Table(linen, 8);
   const ClothSelection s = SelectClothModel(
       table, GenericClothStart(linen), ClothFitOptions(), 0.03);
   // (kd and gamma_v trade off: kd = 0 with a wider volume lobe may meet the
@@ -98,7 +90,7 @@ TEST(ClothSelection, SameColouredThreadsShareTheAlbedo) {
 TEST(ClothSelection, DifferentColoursKeepTheirOwnAlbedos) {
   ClothParams shot;  // red and green threads
   ASSERT_TRUE(GetPreset("silk_shot", &shot));
-  const MeasurementTable table = Table(shot, false, 9);
+  const MeasurementTable table = Table(shot, 9);
   const ClothSelection s = SelectClothModel(
       table, GenericClothStart(shot), ClothFitOptions(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
@@ -121,7 +113,7 @@ TEST(ClothSelection, FewerTangentSamplesWhenTheyMeetTheTolerance) {
   TangentCurve curve = truth.threads[0].curve;
   curve.samples = 2;
   truth.threads[0].offsets_deg = SampleTangentCurve(curve);
-  const MeasurementTable table = Table(truth, false, 10);
+  const MeasurementTable table = Table(truth, 10);
   const ClothSelection s = SelectClothModel(
       table, GenericClothStart(satin), ClothFitOptions(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
@@ -134,7 +126,7 @@ TEST(ClothSelection, FewerTangentSamplesWhenTheyMeetTheTolerance) {
 TEST(SelectionReport, JsonAndTextListEveryCandidate) {
   ThreadParams truth;
   truth.kd = 0.5;
-  const MeasurementTable table = Table(truth, true, 11);
+  const MeasurementTable table = Table(truth, 11);
   const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
   const std::string text = SelectionReportText(s.report);
   const std::string json = SelectionReportJson(s.report);

@@ -16,12 +16,17 @@
 #include <gtest/gtest.h>
 
 #include "data_synthetic/synthetic_table.h"
+#include "tests/fit_test_util.h"
 #include "fitting/least_squares.h"
 #include "io/input_error.h"
 #include "models/presets.h"
 
 namespace clothfit {
 namespace {
+
+using testing_util::Contains;
+using testing_util::NoisyTable;
+using testing_util::UndeterminedNames;
 
 constexpr int kRows = 2000;
 constexpr double kNoiseFreeTolerance = 1e-3;  // relative
@@ -78,16 +83,7 @@ std::vector<double> AsVector(const ThreadParams& p) {
 // (5 % of them at grazing), brdf values of `truth`, multiplicative noise.
 MeasurementTable ThreadTable(const ThreadParams& truth, double noise,
                              uint64_t seed, int rows = kRows) {
-  Random random(seed);
-  DirectionSampling sampling;
-  sampling.rows = rows;
-  sampling.full_sphere_out = true;
-  MeasurementTable table;
-  table.rows = SampleDirections(sampling, &random);
-  SynthOptions synth;
-  synth.noise = noise;
-  SynthesizeValues(truth, synth, &random, &table);
-  return table;
+  return NoisyTable(truth, noise, seed, rows);  // wo over the whole sphere
 }
 
 // The scale a true value is compared against: the value itself, or for a
@@ -200,24 +196,6 @@ void ExpectAllFinite(const ThreadFitResult& result) {
   }
   EXPECT_EQ(FitReportJson(r).find("nan"), std::string::npos) << FitReportJson(r);
   EXPECT_EQ(FitReportJson(r).find("inf"), std::string::npos) << FitReportJson(r);
-}
-
-// The names listed by FitReport::identifiability ("not identifiable: a, b").
-std::vector<std::string> UndeterminedNames(const std::string& text) {
-  std::vector<std::string> names;
-  const size_t colon = text.find(':');
-  if (colon == std::string::npos) return names;
-  std::stringstream list(text.substr(colon + 1));
-  std::string name;
-  while (std::getline(list, name, ',')) {
-    const size_t b = name.find_first_not_of(' ');
-    if (b != std::string::npos) names.push_back(name.substr(b));
-  }
-  return names;
-}
-
-bool Contains(const std::vector<std::string>& names, const std::string& n) {
-  return std::find(names.begin(), names.end(), n) != names.end();
 }
 
 // ---------------------------------------------------------------------------
