@@ -62,8 +62,8 @@ bool CommandArgs::Parse(int argc, char** argv, int first) {
     }
     if (!has_inline) {
       if (i + 1 >= argc) {
-        Fail("option '--" + name + "' needs a value (" +
-             it->second.value_name + ")");
+        Fail("option '--" + name + "' needs a value (" + it->second.value_name +
+             ")");
       }
       value = argv[++i];
     }

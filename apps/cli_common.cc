@@ -9,8 +9,8 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name) {
   const std::string text = args.Get(name);
   const std::optional<Quantity> q = ParseQuantity(text);
   if (!q || *q == Quantity::kTransmittance) {
-    args.Fail("option '--" + name + "': expected brdf or cosine_weighted, got '" +
-              text + "'");
+    args.Fail("option '--" + name +
+              "': expected brdf or cosine_weighted, got '" + text + "'");
   }
   return *q;
 }

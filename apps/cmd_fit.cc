@@ -2,11 +2,10 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/commands.h"
-#include <nlohmann/json.hpp>
-
 #include "fitting/cloth_fit.h"
 #include "fitting/model_selection.h"
 #include "fitting/thread_fit.h"
@@ -47,7 +46,8 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   }
   s.max_iterations = static_cast<int>(iterations);
   const long threads = args.GetInt("threads");
-  if (threads < 1 || threads > 256) args.Fail("option '--threads': must be in [1, 256]");
+  if (threads < 1 || threads > 256)
+    args.Fail("option '--threads': must be in [1, 256]");
   s.num_threads = static_cast<int>(threads);
   // A progress line on a terminal, overwritten in place.
   if (isatty(STDERR_FILENO)) {
@@ -73,7 +73,8 @@ int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
   std::string fit_json = FitReportJson(report);
   if (selection) {
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
-    j["selection"] = nlohmann::ordered_json::parse(SelectionReportJson(*selection));
+    j["selection"] =
+        nlohmann::ordered_json::parse(SelectionReportJson(*selection));
     fit_json = j.dump();
   }
   WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
@@ -142,7 +143,8 @@ int RunFit(int argc, char** argv) {
               << " invalid row(s); first: " << read.first_skip_reason << "\n";
   }
   const MeasurementTable& table = read.table;
-  const std::vector<std::string> fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
+  const std::vector<std::string> fix =
+      SplitList(args.Has("fix") ? args.Get("fix") : "");
   const std::vector<std::string> free_only =
       SplitList(args.Has("free") ? args.Get("free") : "");
   int starts = 0;  // 0: the model's default
@@ -166,7 +168,8 @@ int RunFit(int argc, char** argv) {
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
     if (starts > 0) options.solve_starts = starts;
-    if (args.Has("preset")) args.Fail("--preset gives cloth parameters; use --init");
+    if (args.Has("preset"))
+      args.Fail("--preset gives cloth parameters; use --init");
     if (args.Has("init")) {
       const ParamFile init = ReadParamFile(args.Get("init"));
       if (!std::holds_alternative<ThreadParams>(init.params)) {
@@ -204,8 +207,10 @@ int RunFit(int argc, char** argv) {
     if (starts > 0) options.solve_starts = starts;
     std::vector<double> truth_values;
     if (truth && std::holds_alternative<ClothParams>(truth->params) &&
-        std::get<ClothParams>(truth->params).threads.size() == layout.threads.size()) {
-      truth_values = ClothParameterValues(std::get<ClothParams>(truth->params), layout);
+        std::get<ClothParams>(truth->params).threads.size() ==
+            layout.threads.size()) {
+      truth_values =
+          ClothParameterValues(std::get<ClothParams>(truth->params), layout);
     }
     if (tolerance) {
       const ClothSelection sel =

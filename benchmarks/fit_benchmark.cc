@@ -29,8 +29,7 @@ void BM_ThreadFit(benchmark::State& state) {
   truth.gamma_s_deg = 2.5;
   truth.gamma_v_deg = 5.0;
   truth.albedo = glm::dvec3(0.035, 0.01295, 0.0105);
-  const MeasurementTable table =
-      Table(truth, static_cast<int>(state.range(0)));
+  const MeasurementTable table = Table(truth, static_cast<int>(state.range(0)));
   for (auto _ : state) {
     const ThreadFitResult r = FitThread(table, ThreadFitOptions());
     if (!r.report.converged) state.SkipWithError("fit did not converge");
@@ -42,8 +41,7 @@ BENCHMARK(BM_ThreadFit)->Arg(10000)->Unit(benchmark::kMillisecond);
 void BM_ClothFit(benchmark::State& state, const char* preset) {
   ClothParams truth;
   GetPreset(preset, &truth);
-  const MeasurementTable table =
-      Table(truth, static_cast<int>(state.range(0)));
+  const MeasurementTable table = Table(truth, static_cast<int>(state.range(0)));
   const ClothParams start = GenericClothStart(truth);
   for (auto _ : state) {
     const ClothFitResult r = FitCloth(table, start, ClothFitOptions());

@@ -1,9 +1,9 @@
 // Model evaluation speed (issue 3: >= 1 million satin rho evaluations per
 // second on one core). Run with --benchmark_repetitions=10 for medians and
 // spread: build/benchmarks/model_benchmark --benchmark_repetitions=10
-#include <vector>
-
 #include <benchmark/benchmark.h>
+
+#include <vector>
 
 #include "data_synthetic/synthetic_table.h"
 #include "models/presets.h"

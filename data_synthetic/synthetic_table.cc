@@ -80,8 +80,8 @@ std::vector<TableRow> SampleDirections(const DirectionSampling& sampling,
     if (graze && i % 40 == 39) {
       row.wo = Grazing(random);
     } else if (sampling.full_sphere_out) {
-      row.wo = SampleHemisphere(0.0, random->Uniform() < 0.5 ? -1.0 : 1.0,
-                                random);
+      row.wo =
+          SampleHemisphere(0.0, random->Uniform() < 0.5 ? -1.0 : 1.0, random);
     } else {
       row.wo = SampleHemisphere(sampling.min_cos_theta, 1.0, random);
     }

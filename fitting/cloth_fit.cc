@@ -1,11 +1,11 @@
 #include "fitting/cloth_fit.h"
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
-
-#include <ceres/ceres.h>
 
 #include "fitting/least_squares.h"
 #include "fitting/start_search.h"
@@ -30,8 +30,8 @@ bool EndsWith(const std::string& name, const std::string& suffix) {
 
 // What stays fixed through a fit, shared by all residuals.
 struct Weave {
-  ClothParams layout;        // directions, base offsets, fixed values
-  bool weave_blocks = false;  // coverage/offset_scale blocks passed to Ceres
+  ClothParams layout;          // directions, base offsets, fixed values
+  bool weave_blocks = false;   // coverage/offset_scale blocks passed to Ceres
   bool shared_albedo = false;  // every thread uses thread 0's albedo
   bool fit_scale = false;      // a last block [scale] multiplies the model
 };
@@ -131,9 +131,8 @@ struct ClothResidual {
                          Cast<T>(wo), quantity);
     }
     const size_t n = weave->layout.threads.size();
-    const T s = weave->fit_scale
-                    ? blocks[n * (weave->weave_blocks ? 2 : 1)][0]
-                    : T(1.0);
+    const T s = weave->fit_scale ? blocks[n * (weave->weave_blocks ? 2 : 1)][0]
+                                 : T(1.0);
     for (int c = 0; c < kChannels; ++c) {
       residual[c] = (s * model[c] - T(value[c])) * T(scale[c]);
     }
@@ -182,33 +181,49 @@ struct ClothResidual {
   // AutoDiffCostFunction over the blocks (sizes...).
   template <int... kSizes>
   static ceres::CostFunction* Make(ClothResidual* f) {
-    return new ceres::AutoDiffCostFunction<ClothResidual, kChannels,
-                                           kSizes...>(f);
+    return new ceres::AutoDiffCostFunction<ClothResidual, kChannels, kSizes...>(
+        f);
   }
 
-  static ceres::CostFunction* Create(std::shared_ptr<const Weave> weave,
-                                     const TableRow& row, Quantity quantity,
-                                     std::shared_ptr<const RowSamples> samples) {
+  static ceres::CostFunction* Create(
+      std::shared_ptr<const Weave> weave, const TableRow& row,
+      Quantity quantity, std::shared_ptr<const RowSamples> samples) {
     constexpr int P = ThreadParams::kSize, W = kWeaveSize;
     const size_t n = weave->layout.threads.size();
     const int layout = static_cast<int>(n) * 4 + (weave->weave_blocks ? 2 : 0) +
                        (weave->fit_scale ? 1 : 0);
-    auto* f = new ClothResidual{std::move(weave), row.wi, row.wo, row.value,
-                                std::sqrt(row.weight) / row.sigma, quantity,
+    auto* f = new ClothResidual{std::move(weave),
+                                row.wi,
+                                row.wo,
+                                row.value,
+                                std::sqrt(row.weight) / row.sigma,
+                                quantity,
                                 std::move(samples)};
     switch (layout) {  // threads * 4 + weave blocks * 2 + scale
-      case 4: return Make<P>(f);
-      case 5: return Make<P, 1>(f);
-      case 6: return Make<P, W>(f);
-      case 7: return Make<P, W, 1>(f);
-      case 8: return Make<P, P>(f);
-      case 9: return Make<P, P, 1>(f);
-      case 10: return Make<P, W, P, W>(f);
-      case 11: return Make<P, W, P, W, 1>(f);
-      case 12: return Make<P, P, P>(f);
-      case 13: return Make<P, P, P, 1>(f);
-      case 14: return Make<P, W, P, W, P, W>(f);
-      default: return Make<P, W, P, W, P, W, 1>(f);
+      case 4:
+        return Make<P>(f);
+      case 5:
+        return Make<P, 1>(f);
+      case 6:
+        return Make<P, W>(f);
+      case 7:
+        return Make<P, W, 1>(f);
+      case 8:
+        return Make<P, P>(f);
+      case 9:
+        return Make<P, P, 1>(f);
+      case 10:
+        return Make<P, W, P, W>(f);
+      case 11:
+        return Make<P, W, P, W, 1>(f);
+      case 12:
+        return Make<P, P, P>(f);
+      case 13:
+        return Make<P, P, P, 1>(f);
+      case 14:
+        return Make<P, W, P, W, P, W>(f);
+      default:
+        return Make<P, W, P, W, P, W, 1>(f);
     }
   }
 };
@@ -224,8 +239,8 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
       // eta is fixed by default: the data rarely separate it from kd/albedo.
       const bool free = i != 0;
       // kd and the albedo are bounded by their physical range.
-      specs.push_back({prefix + names[i], lower[i], upper[i], free,
-                       i == 1 || i >= 4});
+      specs.push_back(
+          {prefix + names[i], lower[i], upper[i], free, i == 1 || i >= 4});
     }
     double largest = 0.0;
     for (double o : layout.threads[j].offsets_deg) {
@@ -308,7 +323,8 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
   std::vector<double> x = ToVector(c);
   for (size_t j = 0; j < c.threads.size() && j < layout.threads.size(); ++j) {
     double mine = 0.0, theirs = 0.0;
-    for (double o : c.threads[j].offsets_deg) mine = std::max(mine, std::abs(o));
+    for (double o : c.threads[j].offsets_deg)
+      mine = std::max(mine, std::abs(o));
     for (double o : layout.threads[j].offsets_deg) {
       theirs = std::max(theirs, std::abs(o));
     }
@@ -322,8 +338,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
                         const ClothFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();  // search + solves
   if (table.quantity == Quantity::kTransmittance) {
-    throw InputError("a cloth model predicts brdf or cosine_weighted values, "
-                     "not transmittance");
+    throw InputError(
+        "a cloth model predicts brdf or cosine_weighted values, "
+        "not transmittance");
   }
   if (init.threads.empty() || init.threads.size() > 3) {
     throw InputError(
@@ -342,7 +359,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   // Entry i of thread j's part of the vector (ThreadParams layout, then 7:
   // coverage, 8: offset_scale).
-  auto is_free = [&](size_t j, int i) { return lsq.specs[j * kPerThread + i].free; };
+  auto is_free = [&](size_t j, int i) {
+    return lsq.specs[j * kPerThread + i].free;
+  };
   constexpr int kEta = 0, kKd = 1, kGammaS = 2, kGammaV = 3, kAlbedo = 4;
   constexpr int kCoverage = 7, kOffsetScale = 8;
   auto weave = std::make_shared<Weave>();
@@ -350,7 +369,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   weave->shared_albedo = options.shared_albedo && n > 1;
   if (weave->shared_albedo) {  // threads j > 0 take thread 0's albedo
     for (size_t j = 1; j < n; ++j) {
-      for (int c = 0; c < 3; ++c) lsq.specs[j * kPerThread + 4 + c].free = false;
+      for (int c = 0; c < 3; ++c)
+        lsq.specs[j * kPerThread + 4 + c].free = false;
     }
   }
   bool offsets_fixed = true;
@@ -392,11 +412,10 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
       ceres::CostFunction* cost =
-          table.channels == 1
-              ? ClothResidual<1>::Create(weave, row, table.quantity,
-                                         row_samples[i])
-              : ClothResidual<3>::Create(weave, row, table.quantity,
-                                         row_samples[i]);
+          table.channels == 1 ? ClothResidual<1>::Create(
+                                    weave, row, table.quantity, row_samples[i])
+                              : ClothResidual<3>::Create(
+                                    weave, row, table.quantity, row_samples[i]);
       problem->AddResidualBlock(cost, loss, used);
     }
   };
@@ -446,8 +465,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       Vec3<double> s_j;
       double w_j;
       ThreadSums(p, *search_samples[i], j, &s_j, &w_j);
-      v[i] = FromCosineWeighted(s_j * (coverage * inv_q[i]),
-                                table.rows[i].wi.z, table.quantity);
+      v[i] = FromCosineWeighted(s_j * (coverage * inv_q[i]), table.rows[i].wi.z,
+                                table.quantity);
     }
     return v;
   };
@@ -497,9 +516,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       th.params.albedo = glm::dvec3(th.params.albedo.x);
     }
   }
-  result.report.seconds = std::chrono::duration<double>(
-                              std::chrono::steady_clock::now() - t0)
-                              .count();
+  result.report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
   return result;
 }
 

@@ -1,9 +1,8 @@
 #include "fitting/fit_result.h"
 
 #include <cstdio>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace clothfit {
 
@@ -41,7 +40,8 @@ std::string FitReportJson(const FitReport& r) {
   return j.dump();
 }
 
-std::string FitReportText(const FitReport& r, const std::vector<double>& truth) {
+std::string FitReportText(const FitReport& r,
+                          const std::vector<double>& truth) {
   std::ostringstream out;
   char line[256];
   std::snprintf(line, sizeof(line),

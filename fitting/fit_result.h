@@ -16,7 +16,7 @@ enum class Loss { kNone, kHuber, kCauchy };
 struct SolverOptions {
   int max_iterations = 200;
   Loss loss = Loss::kNone;
-  double loss_scale = 1.0;   // in units of sigma (residuals are normalised)
+  double loss_scale = 1.0;  // in units of sigma (residuals are normalised)
   int num_threads = 1;
   // Told what a long fit is doing ("start 2 of 3", "candidate 4 of 12: ...");
   // may be empty.
@@ -27,24 +27,24 @@ struct ParameterReport {
   std::string name;
   double value = 0.0;
   bool free = false;
-  double stddev = -1.0;      // < 0: not available (fixed or not identifiable)
+  double stddev = -1.0;  // < 0: not available (fixed or not identifiable)
   double lower = 0.0, upper = 0.0;
-  bool at_bound = false;     // a free parameter ended on its bound
+  bool at_bound = false;         // a free parameter ended on its bound
   bool at_search_limit = false;  // ... on a bound that only limits the search
 };
 
 struct FitReport {
-  bool usable = false;          // solver reached a usable solution
-  bool converged = false;       // and met a convergence criterion
-  std::string termination;      // Ceres termination type
-  std::string message;          // Ceres message or the reason it is unusable
-  double final_cost = 0.0;      // 1/2 sum of squared normalised residuals
-  double rms = 0.0;             // RMS of (model - measured), data units
-  double relative_rms = 0.0;    // RMS(model - measured) / RMS(measured)
+  bool usable = false;        // solver reached a usable solution
+  bool converged = false;     // and met a convergence criterion
+  std::string termination;    // Ceres termination type
+  std::string message;        // Ceres message or the reason it is unusable
+  double final_cost = 0.0;    // 1/2 sum of squared normalised residuals
+  double rms = 0.0;           // RMS of (model - measured), data units
+  double relative_rms = 0.0;  // RMS(model - measured) / RMS(measured)
   int iterations = 0;
-  double seconds = 0.0;         // wall time of the whole fit
+  double seconds = 0.0;  // wall time of the whole fit
   int residuals = 0;
-  int starts = 1;               // multi-start: how many solves were run
+  int starts = 1;  // multi-start: how many solves were run
   std::vector<ParameterReport> parameters;
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".

@@ -1,13 +1,13 @@
 #include "fitting/least_squares.h"
 
+#include <ceres/ceres.h>
+
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 #include <sstream>
-
-#include <Eigen/Dense>
-#include <ceres/ceres.h>
 
 #include "io/input_error.h"
 
@@ -192,7 +192,8 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
 bool NameMatches(const std::string& pattern, const std::string& name) {
   if (pattern == name) return true;
   const size_t dot = name.rfind('.');
-  const std::string last = dot == std::string::npos ? name : name.substr(dot + 1);
+  const std::string last =
+      dot == std::string::npos ? name : name.substr(dot + 1);
   if (pattern == last) return true;
   // "albedo" (or "threads[0].albedo") stands for the three channels.
   for (const char* channel : {"_r", "_g", "_b"}) {
@@ -284,15 +285,18 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       best = FitReport();
       best.usable = true;
       best.converged = summary.termination_type == ceres::CONVERGENCE;
-      best.termination = ceres::TerminationTypeToString(summary.termination_type);
+      best.termination =
+          ceres::TerminationTypeToString(summary.termination_type);
       best.message = summary.message;
       best.final_cost = summary.final_cost;
       best.residuals = summary.num_residuals;
       best_x = x;
     } else if (!best.usable && best_x.empty()) {
-      best.termination = ceres::TerminationTypeToString(summary.termination_type);
-      best.message = finite ? summary.message
-                            : "non-finite cost or parameters: " + summary.message;
+      best.termination =
+          ceres::TerminationTypeToString(summary.termination_type);
+      best.message = finite
+                         ? summary.message
+                         : "non-finite cost or parameters: " + summary.message;
     }
   }
   best.starts = static_cast<int>(starts.size());
@@ -327,7 +331,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     *x_out = x;
   }
   best.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
   return best;
 }
 

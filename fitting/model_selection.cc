@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace clothfit {
 namespace {
@@ -95,7 +94,9 @@ std::string SelectionReportText(const SelectionReport& r) {
                   static_cast<int>(i) == r.chosen ? "*" : " ",
                   c.description.c_str(), c.free_parameters, c.samples,
                   c.relative_rms, c.bic,
-                  !c.usable ? "  (failed)" : c.meets_tolerance ? "  meets" : "");
+                  !c.usable           ? "  (failed)"
+                  : c.meets_tolerance ? "  meets"
+                                      : "");
     out << line;
   }
   out << "chosen: " << r.reason << "\n";
@@ -130,14 +131,16 @@ ClothSelection SelectClothModel(const MeasurementTable& table,
   // Tangent-sample variants: T = 1, 2, 4, ... below each curve's count.
   int max_samples = 0;
   for (const ClothThread& th : init.threads) {
-    max_samples = std::max(max_samples, static_cast<int>(th.offsets_deg.size()));
+    max_samples =
+        std::max(max_samples, static_cast<int>(th.offsets_deg.size()));
   }
   std::vector<std::pair<std::string, ClothParams>> weaves;
   for (int t = 1; t < max_samples; t *= 2) {
     ClothParams c = init;
     bool changed = false;
     for (ClothThread& th : c.threads) {
-      if (th.curve.lengths.empty() || static_cast<int>(th.offsets_deg.size()) <= t) {
+      if (th.curve.lengths.empty() ||
+          static_cast<int>(th.offsets_deg.size()) <= t) {
         continue;
       }
       th.curve.samples = t;
@@ -197,9 +200,8 @@ ClothSelection SelectClothModel(const MeasurementTable& table,
     o.shared_albedo = c.shared_albedo;
     o.fix.insert(o.fix.end(), c.extra_fix.begin(), c.extra_fix.end());
     ClothFitResult fit = FitCloth(table, c.init, o);
-    out.report.candidates.push_back(Describe(c.description, c.samples,
-                                             fit.report, table.has_sigma,
-                                             tolerance));
+    out.report.candidates.push_back(Describe(
+        c.description, c.samples, fit.report, table.has_sigma, tolerance));
     fits.emplace_back(std::move(fit), c.init);
     if (out.report.candidates.back().meets_tolerance) break;
   }

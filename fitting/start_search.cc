@@ -55,7 +55,9 @@ class Gram {
       }
     }
   }
-  double G(int c, size_t u, size_t v) const { return g_[(c * n_ + u) * n_ + v]; }
+  double G(int c, size_t u, size_t v) const {
+    return g_[(c * n_ + u) * n_ + v];
+  }
   double B(int c, size_t u) const { return b_[c * n_ + u]; }
   double YY(int c) const { return yy_[c]; }
 
@@ -68,7 +70,8 @@ class Gram {
 // A linear combination of basis vectors.
 using Combination = std::vector<std::pair<size_t, double>>;
 
-double Dot(const Gram& gram, int c, const Combination& a, const Combination& b) {
+double Dot(const Gram& gram, int c, const Combination& a,
+           const Combination& b) {
   double sum = 0.0;
   for (const auto& [u, x] : a) {
     for (const auto& [v, y] : b) sum += x * y * gram.G(c, u, v);
@@ -161,7 +164,8 @@ class Search {
 
     point->threads = problem.init;
     point->scale = 1.0;
-    std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)), b_out(n, glm::dvec3(0.0));
+    std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)),
+        b_out(n, glm::dvec3(0.0));
     double scale_sum = 0.0;
     for (int c = 0; c < channels; ++c) {
       std::vector<Combination> column(m);
@@ -311,8 +315,9 @@ std::vector<StartPoint> SearchStarts(const StartSearchProblem& problem,
   }
   std::vector<StartPoint> all;
   for (auto& [key, point] : seen) all.push_back(point);
-  std::sort(all.begin(), all.end(),
-            [](const StartPoint& a, const StartPoint& b) { return a.cost < b.cost; });
+  std::sort(
+      all.begin(), all.end(),
+      [](const StartPoint& a, const StartPoint& b) { return a.cost < b.cost; });
   // Keep the best, then the next best that differ from every kept one by a
   // factor of 2 or more in some width: neighbours on the grid lead the
   // solver into the same basin.

@@ -1,10 +1,10 @@
 #include "fitting/thread_fit.h"
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
-
-#include <ceres/ceres.h>
 
 #include "fitting/least_squares.h"
 #include "fitting/start_search.h"
@@ -27,7 +27,8 @@ struct ThreadResidual {
     const Vec3<T> model = ThreadValue(ThreadParamsFromArray(x), Cast<T>(wi),
                                       Cast<T>(wo), quantity);
     for (int c = 0; c < kChannels; ++c) {
-      residual[c] = ((s ? s[0] : T(1.0)) * model[c] - T(value[c])) * T(scale[c]);
+      residual[c] =
+          ((s ? s[0] : T(1.0)) * model[c] - T(value[c])) * T(scale[c]);
     }
     return true;
   }
@@ -42,7 +43,8 @@ struct ThreadResidual {
                                  std::sqrt(row.weight) / row.sigma, quantity};
     constexpr int P = ThreadParams::kSize;
     if (fit_scale) {
-      return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels, P, 1>(f);
+      return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels, P, 1>(
+          f);
     }
     return new ceres::AutoDiffCostFunction<ThreadResidual, kChannels, P>(f);
   }
@@ -55,8 +57,8 @@ std::vector<ParameterSpec> ThreadSpecs() {
   const double upper[] = {3.0, 1.0, 90.0, 90.0, 1e3, 1e3, 1e3};
   for (int i = 0; i < ThreadParams::kSize; ++i) {
     // kd and the albedo are bounded by their physical range (i = 1, 4..6).
-    specs[i] = ParameterSpec{names[i], lower[i], upper[i], true,
-                             i == 1 || i >= 4};
+    specs[i] =
+        ParameterSpec{names[i], lower[i], upper[i], true, i == 1 || i >= 4};
   }
   return specs;
 }
@@ -67,8 +69,9 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                           const ThreadFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();  // search + solves
   if (table.quantity == Quantity::kTransmittance) {
-    throw InputError("a thread model predicts brdf or cosine_weighted "
-                     "values, not transmittance");
+    throw InputError(
+        "a thread model predicts brdf or cosine_weighted "
+        "values, not transmittance");
   }
   LeastSquaresProblem lsq;
   lsq.specs = ThreadSpecs();
@@ -83,9 +86,10 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                           ceres::LossFunction* loss, ceres::Problem* problem) {
     for (const TableRow& row : table.rows) {
       ceres::CostFunction* cost =
-          table.channels == 1
-              ? ThreadResidual<1>::Create(row, table.quantity, options.fit_scale)
-              : ThreadResidual<3>::Create(row, table.quantity, options.fit_scale);
+          table.channels == 1 ? ThreadResidual<1>::Create(row, table.quantity,
+                                                          options.fit_scale)
+                              : ThreadResidual<3>::Create(row, table.quantity,
+                                                          options.fit_scale);
       if (options.fit_scale) {
         problem->AddResidualBlock(cost, loss, blocks[0], blocks[1]);
       } else {
@@ -97,8 +101,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                     std::vector<double>* measured) {
     const ThreadParams p = ThreadParamsFromArray(x.data());
     for (const TableRow& row : table.rows) {
-      const glm::dvec3 m =
-          x[ThreadParams::kSize] * ThreadValue(p, row.wi, row.wo, table.quantity);
+      const glm::dvec3 m = x[ThreadParams::kSize] *
+                           ThreadValue(p, row.wi, row.wo, table.quantity);
       for (int c = 0; c < table.channels; ++c) {
         model->push_back(m[c]);
         measured->push_back(row.value[c]);
@@ -146,9 +150,9 @@ ThreadFitResult FitThread(const MeasurementTable& table,
       }
     }
   }
-  result.report.seconds = std::chrono::duration<double>(
-                              std::chrono::steady_clock::now() - t0)
-                              .count();
+  result.report.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
   return result;
 }
 

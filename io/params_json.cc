@@ -1,12 +1,11 @@
 #include "io/params_json.h"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
@@ -23,8 +22,8 @@ class ObjectReader {
  public:
   ObjectReader(const json& object, std::string file, std::string path)
       : object_(object), file_(std::move(file)), path_(std::move(path)) {
-    if (!object_.is_object()) Fail(path_.empty() ? "(top level)" : path_,
-                                   "must be a JSON object");
+    if (!object_.is_object())
+      Fail(path_.empty() ? "(top level)" : path_, "must be a JSON object");
   }
 
   [[noreturn]] void Fail(const std::string& key,
@@ -83,8 +82,10 @@ class ObjectReader {
     }
     const std::vector<double> a = NumberArray(key);
     if (a.size() != 3) {
-      Fail(Path(key), "must be a number or an array of 3 numbers (r, g, b), "
-                      "got " + std::to_string(a.size()) + " entries");
+      Fail(Path(key),
+           "must be a number or an array of 3 numbers (r, g, b), "
+           "got " +
+               std::to_string(a.size()) + " entries");
     }
     return glm::dvec3(a[0], a[1], a[2]);
   }
@@ -138,8 +139,8 @@ ClothThread ReadClothThread(const json& object, const std::string& file,
   }
   th.coverage = r.Number("coverage");
   const bool explicit_samples = r.Has("offsets_deg");
-  const bool curve = r.Has("curve_offsets_deg") || r.Has("curve_lengths") ||
-                     r.Has("samples");
+  const bool curve =
+      r.Has("curve_offsets_deg") || r.Has("curve_lengths") || r.Has("samples");
   if (explicit_samples && curve) {
     r.Fail(r.Path("offsets_deg"),
            "give either offsets_deg or a tangent curve (curve_offsets_deg, "
@@ -154,8 +155,7 @@ ClothThread ReadClothThread(const json& object, const std::string& file,
     if (samples != std::floor(samples)) {
       r.Fail(r.Path("samples"), "must be an integer");
     }
-    th.curve.samples =
-        static_cast<int>(std::max(-1.0, std::min(samples, 1e9)));
+    th.curve.samples = static_cast<int>(std::max(-1.0, std::min(samples, 1e9)));
     const std::string e = ValidateTangentCurve(th.curve);
     if (!e.empty()) FailValidation(file, path + "." + e);
     th.offsets_deg = SampleTangentCurve(th.curve);

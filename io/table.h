@@ -12,13 +12,12 @@
 #pragma once
 
 #include <glm/vec3.hpp>
-
-#include "models/quantity.h"
-
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "models/quantity.h"
 
 namespace clothfit {
 
@@ -29,24 +28,24 @@ std::optional<Quantity> ParseQuantity(const std::string& text);
 const char* QuantityName(Quantity quantity);
 
 struct TableRow {
-  glm::dvec3 wi{0.0, 0.0, 1.0};     // unit vector towards the light
-  glm::dvec3 wo{0.0, 0.0, 1.0};     // unit vector towards the viewer
-  glm::dvec3 value{0.0};            // measured quantity per channel
-  glm::dvec3 sigma{1.0};            // 1-sigma error per channel (> 0)
-  double weight = 1.0;              // residual weight (>= 0)
-  int s = -1, t = -1;               // texel indices, -1 when absent
-  int source_line = 0;              // 1-based line in the file (0: made in memory)
+  glm::dvec3 wi{0.0, 0.0, 1.0};  // unit vector towards the light
+  glm::dvec3 wo{0.0, 0.0, 1.0};  // unit vector towards the viewer
+  glm::dvec3 value{0.0};         // measured quantity per channel
+  glm::dvec3 sigma{1.0};         // 1-sigma error per channel (> 0)
+  double weight = 1.0;           // residual weight (>= 0)
+  int s = -1, t = -1;            // texel indices, -1 when absent
+  int source_line = 0;           // 1-based line in the file (0: made in memory)
 };
 
 struct MeasurementTable {
   // Metadata lines in file order, keys lower-cased; unknown keys are kept.
   std::vector<std::pair<std::string, std::string>> metadata;
   Quantity quantity = Quantity::kBrdf;
-  int channels = 3;                 // 1 ("value") or 3 ("r,g,b")
+  int channels = 3;  // 1 ("value") or 3 ("r,g,b")
   DirectionColumns direction_columns = DirectionColumns::kAngles;
   bool has_sigma = false;
   bool has_weight = false;
-  bool has_texels = false;          // s,t columns present
+  bool has_texels = false;  // s,t columns present
   std::vector<TableRow> rows;
 
   // Value of a metadata key (case-insensitive), if present.
@@ -67,7 +66,7 @@ struct ReadTableOptions {
 struct ReadTableResult {
   MeasurementTable table;
   int skipped = 0;
-  std::string first_skip_reason;   // "file:line:col: problem" of the first
+  std::string first_skip_reason;  // "file:line:col: problem" of the first
 };
 
 // Reads a table. Throws InputError naming file, line and column on bad input:

@@ -53,9 +53,8 @@ inline std::vector<double> SampleTangentCurve(const TangentCurve& c) {
       start += c.lengths[k];
       ++k;
     }
-    const double s = c.lengths[k] > 0.0
-                         ? Clamp((x - start) / c.lengths[k], 0.0, 1.0)
-                         : 1.0;
+    const double s =
+        c.lengths[k] > 0.0 ? Clamp((x - start) / c.lengths[k], 0.0, 1.0) : 1.0;
     out.push_back(c.offsets_deg[k] +
                   s * (c.offsets_deg[k + 1] - c.offsets_deg[k]));
   }
@@ -230,8 +229,8 @@ TangentSample<G> ComputeTangentSample(ThreadDirection direction,
   out.valid = true;
   out.reweight = MaskingTerm(g.cos_psi_i, g.cos_psi_o, g.psi_d);
   if (out.reweight > G(0.0)) {
-    out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) *
-                 out.reweight * g.cos_theta_i;
+    out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * out.reweight *
+                 g.cos_theta_i;
   }
   return out;
 }

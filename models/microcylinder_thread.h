@@ -18,16 +18,15 @@
 // Numerics: cos(theta) is the length of w's projection on the normal plane,
 // theta_h and the azimuth differences come from half-angle arctangents (see
 // ComputeThreadGeometry and AngleBetween); these stay accurate and
-// differentiable up to the poles, where asin/acos of a dot product lose both. A direction along t
-// has no azimuth: ThreadGeometry::valid is false and the sample contributes
-// nothing (SPEC §3.1).
+// differentiable up to the poles, where asin/acos of a dot product lose both. A
+// direction along t has no azimuth: ThreadGeometry::valid is false and the
+// sample contributes nothing (SPEC §3.1).
 #pragma once
 
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <sstream>
 #include <string>
-
-#include <glm/geometric.hpp>
 
 #include "models/math.h"
 
@@ -189,12 +188,12 @@ ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
   //   cos(phi_d / 2) = sqrt((1 + cos phi_d) / 2).
   // theta_i + theta_o lies in (-pi, pi) for valid geometry, so the first
   // denominator is positive.
-  const T cos_sum = g.cos_theta_i * g.cos_theta_o -
-                    g.sin_theta_i * g.sin_theta_o;
-  const T sin_sum = g.sin_theta_i * g.cos_theta_o +
-                    g.cos_theta_i * g.sin_theta_o;
-  const T cos_diff = g.cos_theta_i * g.cos_theta_o +
-                     g.sin_theta_i * g.sin_theta_o;
+  const T cos_sum =
+      g.cos_theta_i * g.cos_theta_o - g.sin_theta_i * g.sin_theta_o;
+  const T sin_sum =
+      g.sin_theta_i * g.cos_theta_o + g.cos_theta_i * g.sin_theta_o;
+  const T cos_diff =
+      g.cos_theta_i * g.cos_theta_o + g.sin_theta_i * g.sin_theta_o;
   g.theta_h = atan(sin_sum / (T(1.0) + cos_sum));
   g.cos2_theta_d = Max(T(0.5) * (T(1.0) + cos_diff), T(0.0));
   const T cos_phi_d = Clamp(glm::dot(pi, po) / (g.cos_theta_i * g.cos_theta_o),

@@ -66,27 +66,24 @@ inline bool GetPreset(const std::string& name, ClothParams* out) {
     c.threads = {Weave(kU, 0.33, {-25, 25}, {1}, both),
                  Weave(kV, 0.33, {-25, 25}, {1}, both)};
   } else if (name == "silk_crepe_de_chine") {
-    c.threads = {
-        Weave(kU, 0.75, {-35, -35, 35, 35}, {1, 1, 1},
-              Thread(1.345, {1.0, 0.95, 0.05}, 0.12, 0.2, 5, 10)),
-        Weave(kV, 0.25, {0, 0}, {1},
-              Thread(1.345, {1.0, 0.95, 0.05}, 0.16, 0.3, 18, 32))};
+    c.threads = {Weave(kU, 0.75, {-35, -35, 35, 35}, {1, 1, 1},
+                       Thread(1.345, {1.0, 0.95, 0.05}, 0.12, 0.2, 5, 10)),
+                 Weave(kV, 0.25, {0, 0}, {1},
+                       Thread(1.345, {1.0, 0.95, 0.05}, 0.16, 0.3, 18, 32))};
   } else if (name == "polyester_satin_charmeuse") {
-    c.threads = {
-        Weave(kU, 0.9, {-32, -32, -18, 0, 0, 18, 32, 32},
-              {1.33, 0.66, 2, 2, 2, 0.66, 1.33},
-              Thread(1.539, {1.0, 0.37, 0.3}, 0.035, 0.1, 2.5, 5)),
-        Weave(kV, 0.1, {0, 0}, {1},
-              Thread(1.539, {1.0, 0.37, 0.3}, 0.2, 0.7, 30, 60))};
+    c.threads = {Weave(kU, 0.9, {-32, -32, -18, 0, 0, 18, 32, 32},
+                       {1.33, 0.66, 2, 2, 2, 0.66, 1.33},
+                       Thread(1.539, {1.0, 0.37, 0.3}, 0.035, 0.1, 2.5, 5)),
+                 Weave(kV, 0.1, {0, 0}, {1},
+                       Thread(1.539, {1.0, 0.37, 0.3}, 0.2, 0.7, 30, 60))};
   } else if (name == "polyester_satin_charmeuse_back") {
     // Table 3 lists six lengths for eight offsets; the curve of Fig. 19(d)
     // is two pieces, so the missing length is the zero-length jump 30 -> -5.
-    c.threads = {
-        Weave(kU, 0.67, {-30, -30, 30, 30, -5, -5, 5, 5},
-              {1.33, 1.33, 1.33, 0, 0.67, 0.67, 0.67},
-              Thread(1.539, {1.0, 0.37, 0.3}, 0.035, 0.1, 2.5, 5)),
-        Weave(kV, 0.33, {0, 0}, {3},
-              Thread(1.539, {1.0, 0.37, 0.3}, 0.2, 0.7, 30, 60))};
+    c.threads = {Weave(kU, 0.67, {-30, -30, 30, 30, -5, -5, 5, 5},
+                       {1.33, 1.33, 1.33, 0, 0.67, 0.67, 0.67},
+                       Thread(1.539, {1.0, 0.37, 0.3}, 0.035, 0.1, 2.5, 5)),
+                 Weave(kV, 0.33, {0, 0}, {3},
+                       Thread(1.539, {1.0, 0.37, 0.3}, 0.2, 0.7, 30, 60))};
   } else if (name == "silk_shot") {
     c.threads = {Weave(kU, 0.86, {-25, -25, 25, 25}, {1.33, 2.67, 1.33},
                        Thread(1.345, {0.1, 1.0, 0.4}, 0.2, 0.1, 4, 8)),

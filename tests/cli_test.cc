@@ -192,10 +192,10 @@ void CheckEval(const fs::path& dir, const fs::path& params_path,
   for (Quantity quantity : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
     const std::string name = QuantityName(quantity);
     const fs::path out_path = dir / ("O_" + name + ".csv");
-    const RunResult r = RunClothfit(
-        dir, {"eval", "--params", params_path.string(), "--dirs",
-              dirs_path.string(), "--out", out_path.string(), "--quantity",
-              name});
+    const RunResult r =
+        RunClothfit(dir, {"eval", "--params", params_path.string(), "--dirs",
+                          dirs_path.string(), "--out", out_path.string(),
+                          "--quantity", name});
     ASSERT_EQ(r.status, 0) << Describe(r);
     EXPECT_EQ(r.err, "");
     const MeasurementTable out = ReadTable(out_path.string()).table;
@@ -272,8 +272,8 @@ TEST(CliTest, PresetOutWritesSameFileAsStdout) {
 TEST(CliTest, EvalPresetMatchesLibrary) {
   const fs::path dir = TestDir();
   const fs::path params_path = dir / "P.json";
-  const RunResult r = RunClothfit(
-      dir, {"preset", "silk_shot", "--out", params_path.string()});
+  const RunResult r =
+      RunClothfit(dir, {"preset", "silk_shot", "--out", params_path.string()});
   ASSERT_EQ(r.status, 0) << Describe(r);
   const MeasurementTable table = DirectionTable(/*lower_wo=*/false);
   ASSERT_GE(table.rows.size(), 50u);
@@ -322,9 +322,9 @@ TEST(CliTest, SynthWithoutNoiseMatchesLibrary) {
 
 TEST(CliTest, SynthIsDeterministic) {
   const fs::path dir = TestDir();
-  const std::vector<std::string> args = {"synth", "--preset", "silk_shot",
-                                         "--rows", "300", "--noise", "0",
-                                         "--seed", "3", "--out"};
+  const std::vector<std::string> args = {
+      "synth",   "--preset", "silk_shot", "--rows", "300",
+      "--noise", "0",        "--seed",    "3",      "--out"};
   std::vector<std::string> first = args, second = args, other = args;
   first.push_back((dir / "T1.csv").string());
   second.push_back((dir / "T2.csv").string());
@@ -343,15 +343,14 @@ TEST(CliTest, SynthNoiseIsAboutTheRequestedLevel) {
   const fs::path dir = TestDir();
   const fs::path clean_path = dir / "clean.csv";
   const fs::path noisy_path = dir / "noisy.csv";
-  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows",
-                              "300", "--noise", "0", "--seed", "3", "--out",
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows", "300",
+                              "--noise", "0", "--seed", "3", "--out",
                               clean_path.string()})
                 .status,
             0);
-  const RunResult r =
-      RunClothfit(dir, {"synth", "--preset", "silk_shot", "--rows", "300",
-                        "--noise", "0.02", "--seed", "3", "--out",
-                        noisy_path.string()});
+  const RunResult r = RunClothfit(
+      dir, {"synth", "--preset", "silk_shot", "--rows", "300", "--noise",
+            "0.02", "--seed", "3", "--out", noisy_path.string()});
   ASSERT_EQ(r.status, 0) << Describe(r);
   const MeasurementTable clean = ReadTable(clean_path.string()).table;
   const MeasurementTable noisy = ReadTable(noisy_path.string()).table;
@@ -435,10 +434,9 @@ TEST(CliTest, EvalInputsOfDirWithInputsAreAccepted) {
   // Guards the bad-input tests below: the same command with good inputs
   // succeeds.
   const fs::path dir = DirWithInputs();
-  const RunResult r =
-      RunClothfit(dir, {"eval", "--params", (dir / "P.json").string(),
-                        "--dirs", (dir / "D.csv").string(), "--out",
-                        (dir / "O.csv").string()});
+  const RunResult r = RunClothfit(
+      dir, {"eval", "--params", (dir / "P.json").string(), "--dirs",
+            (dir / "D.csv").string(), "--out", (dir / "O.csv").string()});
   EXPECT_EQ(r.status, 0) << Describe(r);
   EXPECT_TRUE(fs::exists(dir / "O.csv"));
 }
@@ -497,13 +495,11 @@ TEST(CliTest, UnknownCommand) {
 TEST(CliTest, UnknownPreset) {
   const fs::path dir = TestDir();
   ExpectBadInput(dir, {"preset", "tweed"}, {"tweed"});
-  ExpectBadInput(dir,
-                 {"preset", "tweed", "--out", (dir / "P.json").string()},
+  ExpectBadInput(dir, {"preset", "tweed", "--out", (dir / "P.json").string()},
                  {"tweed"});
-  ExpectBadInput(dir,
-                 {"synth", "--preset", "tweed", "--out",
-                  (dir / "T.csv").string()},
-                 {"tweed"});
+  ExpectBadInput(
+      dir, {"synth", "--preset", "tweed", "--out", (dir / "T.csv").string()},
+      {"tweed"});
 }
 
 TEST(CliTest, EvalRejectsTransmittanceQuantity) {
@@ -522,8 +518,8 @@ TEST(CliTest, OutputInsideMissingDirectory) {
                  {"eval", "--params", (dir / "P.json").string(), "--dirs",
                   (dir / "D.csv").string(), "--out", out},
                  {out});
-  ExpectBadInput(dir, {"synth", "--preset", "velvet", "--rows", "10", "--out",
-                       out},
+  ExpectBadInput(dir,
+                 {"synth", "--preset", "velvet", "--rows", "10", "--out", out},
                  {out});
   ExpectBadInput(dir, {"preset", "velvet", "--out", out}, {out});
   EXPECT_FALSE(fs::exists(dir / "no_such_dir"));
@@ -554,10 +550,10 @@ fs::path DirWithThreadTable() {
             "{\"model\": \"thread\", \"eta\": 1.5, \"kd\": 0.2, "
             "\"gamma_s_deg\": 6, \"gamma_v_deg\": 14, "
             "\"albedo\": [0.3, 0.2, 0.1]}");
-  const RunResult synth = RunClothfit(
-      dir, {"synth", "--params", (dir / "truth.json").string(), "--rows",
-            "1500", "--noise", "0.01", "--seed", "4", "--out",
-            (dir / "T.csv").string()});
+  const RunResult synth =
+      RunClothfit(dir, {"synth", "--params", (dir / "truth.json").string(),
+                        "--rows", "1500", "--noise", "0.01", "--seed", "4",
+                        "--out", (dir / "T.csv").string()});
   EXPECT_EQ(synth.status, 0) << Describe(synth);
   return dir;
 }
@@ -576,8 +572,9 @@ TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
   EXPECT_NEAR(p.gamma_s_deg, 6.0, 0.05 * 6.0);
   EXPECT_NEAR(p.gamma_v_deg, 14.0, 0.05 * 14.0);
   EXPECT_NEAR(p.albedo.x, 0.3, 0.03 * 0.3);
-  for (const char* key : {"\"stddev\"", "\"relative_rms\"", "\"iterations\"",
-                          "\"seconds\"", "\"termination\"", "\"gamma_s_deg\""}) {
+  for (const char* key :
+       {"\"stddev\"", "\"relative_rms\"", "\"iterations\"", "\"seconds\"",
+        "\"termination\"", "\"gamma_s_deg\""}) {
     EXPECT_NE(fit.fit_json.find(key), std::string::npos) << key;
   }
   EXPECT_EQ(fit.fit_json.find("nan"), std::string::npos);
@@ -585,15 +582,15 @@ TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
 
 TEST(CliTest, FitClothFromPresetWeaveWithToleranceReportsCandidates) {
   const fs::path dir = TestDir();
-  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "linen_plain", "--rows",
-                              "1000", "--noise", "0.02", "--out",
-                              (dir / "T.csv").string()})
-                .status,
-            0);
+  ASSERT_EQ(
+      RunClothfit(dir, {"synth", "--preset", "linen_plain", "--rows", "1000",
+                        "--noise", "0.02", "--out", (dir / "T.csv").string()})
+          .status,
+      0);
   const RunResult r = RunClothfit(
       dir, {"fit", "--model", "cloth", "--data", (dir / "T.csv").string(),
-            "--preset", "linen_plain", "--generic-start", "--tolerance",
-            "0.05", "--out", (dir / "fit.json").string()});
+            "--preset", "linen_plain", "--generic-start", "--tolerance", "0.05",
+            "--out", (dir / "fit.json").string()});
   ASSERT_EQ(r.status, 0) << Describe(r);
   EXPECT_NE(r.out.find("model selection"), std::string::npos);
   const ParamFile fit = ReadParamFile((dir / "fit.json").string());

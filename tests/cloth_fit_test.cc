@@ -6,6 +6,8 @@
 // documented; no output is ever NaN.
 #include "fitting/cloth_fit.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,12 +16,10 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "data_synthetic/synthetic_table.h"
-#include "tests/fit_test_util.h"
 #include "io/input_error.h"
 #include "models/presets.h"
+#include "tests/fit_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -142,7 +142,8 @@ void ExpectRecovered(const ClothFitResult& result, const Truth& truth,
   for (const std::string& name : truth.names) {
     const ParameterReport& p = Param(result.report, name);
     const double t = truth.Value(name);
-    const double tol = p.free ? rel * truth.Scale(name) : 1e-12 * truth.Scale(name);
+    const double tol =
+        p.free ? rel * truth.Scale(name) : 1e-12 * truth.Scale(name);
     if (!(std::abs(p.value - t) <= tol)) {
       misses << " " << name << " (fit " << p.value << ", true " << t
              << ", relative error " << std::abs(p.value - t) / truth.Scale(name)
@@ -184,8 +185,8 @@ void ExpectWithinNoise(const ClothFitResult& result, const Truth& truth,
       continue;
     }
     if (!(error <= 3.0 * p.stddev)) {
-      misses << " " << name << " (fit " << p.value << ", true " << t
-             << ": " << error / p.stddev << " sigma)";
+      misses << " " << name << " (fit " << p.value << ", true " << t << ": "
+             << error / p.stddev << " sigma)";
     }
     const double tol =
         tolerance_override > 0.0 ? tolerance_override : NoisyTolerance(name);
@@ -205,8 +206,8 @@ void ExpectWithinNoise(const ClothFitResult& result, const Truth& truth,
              << ")";
     }
   }
-  EXPECT_TRUE(misses.str().empty())
-      << label << ":" << misses.str() << "\n" << ReportWithTruth(report, truth);
+  EXPECT_TRUE(misses.str().empty()) << label << ":" << misses.str() << "\n"
+                                    << ReportWithTruth(report, truth);
 }
 
 void ExpectAllFinite(const ClothFitResult& result) {
@@ -292,11 +293,11 @@ TEST_P(ClothRecoveryTest, FarStartsConvergeToTruthOrReportFailure) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Presets, ClothRecoveryTest, ::testing::ValuesIn(PresetNames()),
-    [](const ::testing::TestParamInfo<std::string>& info) {
-      return info.param;
-    });
+INSTANTIATE_TEST_SUITE_P(Presets, ClothRecoveryTest,
+                         ::testing::ValuesIn(PresetNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
 
 // 1 % of the rows multiplied by 20; a Cauchy loss (scale 2 sigma) keeps
 // every free parameter within 5 % of the truth.
@@ -503,8 +504,8 @@ TEST(ClothFitFinite, SingleRowTableGivesFiniteOutputs) {
 TEST(ClothFitFinite, GrazingNormalAndBelowHorizonRowsGiveFiniteOutputs) {
   const ClothParams preset = Preset("velvet");
   MeasurementTable table;
-  const glm::dvec3 dirs[] = {{0, 0, 1},  {1, 0, 0},         {0, 1, 0},
-                             {0, 0, -1}, {0.6, 0.0, 0.8},   {0.0, -0.6, 0.8},
+  const glm::dvec3 dirs[] = {{0, 0, 1},   {1, 0, 0},       {0, 1, 0},
+                             {0, 0, -1},  {0.6, 0.0, 0.8}, {0.0, -0.6, 0.8},
                              {1, 0, 1e-9}};
   for (const glm::dvec3& wi : dirs) {
     for (const glm::dvec3& wo : dirs) {

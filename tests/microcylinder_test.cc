@@ -1,12 +1,12 @@
 // Thread BSDF and cloth patch (models/microcylinder_*.h, SPEC §3.1-3.2).
+#include <ceres/jet.h>
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <ceres/jet.h>
-#include <gtest/gtest.h>
 
 #include "models/evaluate.h"
 #include "models/presets.h"
@@ -27,8 +27,8 @@ ClothParams Preset(const std::string& name) {
 
 // Every row of the independent implementation's output (SPEC §3.2).
 TEST(MicrocylinderConformance, MatchesIndependentImplementation) {
-  const std::string path =
-      std::string(CLOTHFIT_SHARED_DIR) + "/data/conformance/microcylinder_rho.csv";
+  const std::string path = std::string(CLOTHFIT_SHARED_DIR) +
+                           "/data/conformance/microcylinder_rho.csv";
   std::ifstream in(path);
   ASSERT_TRUE(in) << "cannot open " << path;
   std::string line;
@@ -75,8 +75,10 @@ TEST(ThreadBsdf, JetAndDoubleAgreeAndGradientMatchesFiniteDifferences) {
   p.albedo = {0.3, 0.5, 0.7};
   const ThreadParamsT<Jet7> pj = SeedThread(p);
   const std::vector<std::pair<glm::dvec3, glm::dvec3>> pairs = {
-      {Dir(30, 10), Dir(40, 200)}, {Dir(70, -40), Dir(120, 60)},
-      {Dir(5, 0), Dir(85, 180)},   {Dir(89.9, 90), Dir(60, -90)}};
+      {Dir(30, 10), Dir(40, 200)},
+      {Dir(70, -40), Dir(120, 60)},
+      {Dir(5, 0), Dir(85, 180)},
+      {Dir(89.9, 90), Dir(60, -90)}};
   for (const auto& [wi, wo] : pairs) {
     for (Quantity q : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
       const glm::dvec3 f = ThreadValue(p, wi, wo, q);
@@ -142,8 +144,8 @@ TEST(ClothRho, JetAndDoubleAgreeAndGradientMatchesFiniteDifferences) {
 // directions along the thread tangents (zero-length projections).
 std::vector<glm::dvec3> GridDirections() {
   std::vector<glm::dvec3> out;
-  for (double theta : {0.0, 1e-9, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0,
-                       89.999, 90.0}) {
+  for (double theta :
+       {0.0, 1e-9, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 89.0, 89.999, 90.0}) {
     for (double phi = 0.0; phi < 360.0; phi += 15.0) {
       out.push_back(Dir(theta, phi));
       if (theta == 0.0) break;

@@ -1,9 +1,10 @@
 // --tolerance: the simplest configuration that meets the tolerance is kept,
 // and every candidate tried is reported with its error and BIC.
+#include "fitting/model_selection.h"
+
 #include <gtest/gtest.h>
 
 #include "data_synthetic/synthetic_table.h"
-#include "fitting/model_selection.h"
 #include "models/presets.h"
 #include "tests/fit_test_util.h"
 
@@ -68,8 +69,8 @@ TEST(ClothSelection, SameColouredThreadsShareTheAlbedo) {
   ClothParams linen;  // both threads have the same parameters
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const MeasurementTable table = Table(linen, 8);
-  const ClothSelection s = SelectClothModel(
-      table, GenericClothStart(linen), ClothFitOptions(), 0.03);
+  const ClothSelection s = SelectClothModel(table, GenericClothStart(linen),
+                                            ClothFitOptions(), 0.03);
   // (kd and gamma_v trade off: kd = 0 with a wider volume lobe may meet the
   // tolerance too, so kd is not asserted.)
   const CandidateReport& chosen = Chosen(s.report);
@@ -91,8 +92,8 @@ TEST(ClothSelection, DifferentColoursKeepTheirOwnAlbedos) {
   ClothParams shot;  // red and green threads
   ASSERT_TRUE(GetPreset("silk_shot", &shot));
   const MeasurementTable table = Table(shot, 9);
-  const ClothSelection s = SelectClothModel(
-      table, GenericClothStart(shot), ClothFitOptions(), 0.03);
+  const ClothSelection s =
+      SelectClothModel(table, GenericClothStart(shot), ClothFitOptions(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
   EXPECT_TRUE(chosen.meets_tolerance);
   EXPECT_EQ(chosen.description.find("shared albedo"), std::string::npos);
@@ -114,8 +115,8 @@ TEST(ClothSelection, FewerTangentSamplesWhenTheyMeetTheTolerance) {
   curve.samples = 2;
   truth.threads[0].offsets_deg = SampleTangentCurve(curve);
   const MeasurementTable table = Table(truth, 10);
-  const ClothSelection s = SelectClothModel(
-      table, GenericClothStart(satin), ClothFitOptions(), 0.03);
+  const ClothSelection s = SelectClothModel(table, GenericClothStart(satin),
+                                            ClothFitOptions(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
   EXPECT_TRUE(chosen.meets_tolerance);
   EXPECT_EQ(chosen.description.rfind("T=2", 0), 0u) << chosen.description;

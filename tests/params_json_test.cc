@@ -96,11 +96,10 @@ std::string ThreadFile(const std::string& keys = ThreadKeys(),
 
 // One cloth thread object: direction, coverage, the sample keys and the
 // thread keys, plus `extra`.
-std::string ClothThreadJson(const std::string& direction,
-                            const std::string& coverage,
-                            const std::string& samples =
-                                "\"offsets_deg\": [-25, 25]",
-                            const std::string& extra = "") {
+std::string ClothThreadJson(
+    const std::string& direction, const std::string& coverage,
+    const std::string& samples = "\"offsets_deg\": [-25, 25]",
+    const std::string& extra = "") {
   return "{\"direction\": \"" + direction + "\", \"coverage\": " + coverage +
          ", " + samples + ", " + ThreadKeys("1.46", "0.3", "12") + extra + "}";
 }
@@ -185,10 +184,10 @@ TEST(ParamsJsonTest, TangentCurveIsSampledAndWrittenBackAsCurve) {
   const std::string curve =
       "\"curve_offsets_deg\": [-32, -32, -18, 0, 0, 18, 32, 32], "
       "\"curve_lengths\": [1.33, 0.66, 2, 2, 2, 0.66, 1.33], \"samples\": 9";
-  const ParamFile file = ParseParamFile(
-      ClothFile(ClothThreadJson("u", "0.9", curve),
-                ClothThreadJson("v", "0.1")),
-      kFileName);
+  const ParamFile file =
+      ParseParamFile(ClothFile(ClothThreadJson("u", "0.9", curve),
+                               ClothThreadJson("v", "0.1")),
+                     kFileName);
   const ClothParams& c = std::get<ClothParams>(file.params);
   ASSERT_EQ(c.threads.size(), 2u);
   const ClothThread& th = c.threads[0];
@@ -212,8 +211,7 @@ TEST(ParamsJsonTest, TangentCurveIsSampledAndWrittenBackAsCurve) {
   // one explicit "offsets_deg" key in the whole file.
   const size_t first = text.find("\"offsets_deg\"");
   ASSERT_NE(first, std::string::npos) << text;
-  EXPECT_EQ(text.find("\"offsets_deg\"", first + 1), std::string::npos)
-      << text;
+  EXPECT_EQ(text.find("\"offsets_deg\"", first + 1), std::string::npos) << text;
 
   const ParamFile again = ParseParamFile(text, kFileName);
   ExpectClothParamsEqual(std::get<ClothParams>(again.params), c, "curve");
@@ -295,9 +293,9 @@ TEST(ParamsJsonTest, MissingKeyIsNamed) {
 TEST(ParamsJsonTest, WrongTypeIsNamed) {
   ExpectError(ThreadFile(ThreadKeys("\"1.5\"")), {"eta", "number"});
   ExpectError("{\"model\": \"cloth\", \"threads\": {}}", {"threads"});
-  ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
-                        ClothThreadJson("v", "\"half\"")),
-              {"threads[1].coverage", "number"});
+  ExpectError(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "\"half\"")),
+      {"threads[1].coverage", "number"});
 }
 
 TEST(ParamsJsonTest, OutOfRangeValuesAreNamed) {
@@ -306,13 +304,13 @@ TEST(ParamsJsonTest, OutOfRangeValuesAreNamed) {
   ExpectError(ThreadFile(ThreadKeys("1")), {"eta"});
   ExpectError(ThreadFile(ThreadKeys("1.5", "0.1", "2.5", "[0.1, -0.2, 0.3]")),
               {"albedo"});
-  ExpectError(ClothFile(ClothThreadJson("u", "0.6"),
-                        ClothThreadJson("v", "0.5")),
-              {"threads", "sum"});
-  ExpectError(ClothFile(ClothThreadJson("u", "0.33",
-                                        "\"offsets_deg\": [-25, 120]"),
-                        ClothThreadJson("v", "0.33")),
-              {"threads[0].offsets_deg", "120"});
+  ExpectError(
+      ClothFile(ClothThreadJson("u", "0.6"), ClothThreadJson("v", "0.5")),
+      {"threads", "sum"});
+  ExpectError(
+      ClothFile(ClothThreadJson("u", "0.33", "\"offsets_deg\": [-25, 120]"),
+                ClothThreadJson("v", "0.33")),
+      {"threads[0].offsets_deg", "120"});
 }
 
 TEST(ParamsJsonTest, OutOfRangeThreadKeyInClothIsNamedByPath) {
@@ -328,9 +326,9 @@ TEST(ParamsJsonTest, UnknownModelIsNamed) {
 }
 
 TEST(ParamsJsonTest, UnknownDirectionIsNamed) {
-  ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
-                        ClothThreadJson("w", "0.33")),
-              {"threads[1].direction"});
+  ExpectError(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("w", "0.33")),
+      {"threads[1].direction"});
 }
 
 TEST(ParamsJsonTest, InvalidJsonNamesLineAndColumn) {

@@ -5,6 +5,8 @@
 // --free behave as documented; no output is ever NaN.
 #include "fitting/thread_fit.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -13,13 +15,11 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "data_synthetic/synthetic_table.h"
-#include "tests/fit_test_util.h"
 #include "fitting/least_squares.h"
 #include "io/input_error.h"
 #include "models/presets.h"
+#include "tests/fit_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -161,7 +161,8 @@ void ExpectWithinNoise(const ThreadFitResult& result, const ThreadParams& truth,
     const double error = std::abs(p.value - t[i]);
     EXPECT_LE(error, 3.0 * p.stddev)
         << where << ": truth " << t[i] << ", fit " << p.value << ", stddev "
-        << p.stddev << "\n" << FitReportText(report, t);
+        << p.stddev << "\n"
+        << FitReportText(report, t);
     const double tol =
         tolerance_override > 0.0 ? tolerance_override : NoisyTolerance(p.name);
     if (tol <= 0.0) continue;
@@ -177,7 +178,8 @@ void ExpectWithinNoise(const ThreadFitResult& result, const ThreadParams& truth,
     }
     EXPECT_LE(error, tol * std::abs(t[i]))
         << where << ": truth " << t[i] << ", fit " << p.value << ", stddev "
-        << p.stddev << "\n" << FitReportText(report, t);
+        << p.stddev << "\n"
+        << FitReportText(report, t);
   }
 }
 
@@ -194,8 +196,10 @@ void ExpectAllFinite(const ThreadFitResult& result) {
     EXPECT_TRUE(std::isfinite(p.stddev)) << p.name;
     EXPECT_TRUE(std::isfinite(p.lower) && std::isfinite(p.upper)) << p.name;
   }
-  EXPECT_EQ(FitReportJson(r).find("nan"), std::string::npos) << FitReportJson(r);
-  EXPECT_EQ(FitReportJson(r).find("inf"), std::string::npos) << FitReportJson(r);
+  EXPECT_EQ(FitReportJson(r).find("nan"), std::string::npos)
+      << FitReportJson(r);
+  EXPECT_EQ(FitReportJson(r).find("inf"), std::string::npos)
+      << FitReportJson(r);
 }
 
 // ---------------------------------------------------------------------------
@@ -203,7 +207,8 @@ void ExpectAllFinite(const ThreadFitResult& result) {
 
 class ThreadRecoveryTest : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(ThreadRecoveryTest, NoiseFreeTableRecoversEveryParameterFromDefaultStart) {
+TEST_P(ThreadRecoveryTest,
+       NoiseFreeTableRecoversEveryParameterFromDefaultStart) {
   const ThreadParams truth = CaseParams(GetParam());
   const MeasurementTable table = ThreadTable(truth, 0.0, kSeed);
   const ThreadFitResult result = FitThread(table, ThreadFitOptions());
@@ -252,12 +257,11 @@ TEST_P(ThreadRecoveryTest, FarStartsConvergeToTruthOrReportFailure) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    PresetThreads, ThreadRecoveryTest,
-    ::testing::ValuesIn(ThreadCaseNames()),
-    [](const ::testing::TestParamInfo<std::string>& info) {
-      return info.param;
-    });
+INSTANTIATE_TEST_SUITE_P(PresetThreads, ThreadRecoveryTest,
+                         ::testing::ValuesIn(ThreadCaseNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
 
 // 1 % of the rows multiplied by 20; a Cauchy loss (scale 2 sigma) keeps
 // every parameter within 5 % of the truth.
@@ -443,7 +447,8 @@ TEST(ThreadFitFreeFix, FixAlbedoFixesAllThreeChannels) {
 }
 
 TEST(ThreadFitFreeFix, UnknownNamesThrowInputErrorNamingTheName) {
-  const MeasurementTable table = ThreadTable(CaseParams("Linen"), 0.0, kSeed, 50);
+  const MeasurementTable table =
+      ThreadTable(CaseParams("Linen"), 0.0, kSeed, 50);
   for (bool fix : {true, false}) {
     ThreadFitOptions options;
     (fix ? options.fix : options.free_only) = {"gamma_q_deg"};
@@ -512,7 +517,8 @@ TEST(ThreadFitFinite, AllZeroTableGivesFiniteOutputs) {
 
 TEST(ThreadFitFinite, SingleRowTableGivesFiniteOutputs) {
   for (bool zero : {false, true}) {
-    MeasurementTable table = ThreadTable(CaseParams("SatinFlat"), 0.0, kSeed, 1);
+    MeasurementTable table =
+        ThreadTable(CaseParams("SatinFlat"), 0.0, kSeed, 1);
     if (zero) table.rows[0].value = glm::dvec3(0.0);
     ExpectAllFinite(FitThread(table, ThreadFitOptions()));
   }
@@ -521,8 +527,8 @@ TEST(ThreadFitFinite, SingleRowTableGivesFiniteOutputs) {
 TEST(ThreadFitFinite, GrazingAndTangentRowsGiveFiniteOutputs) {
   // Rows along the tangent (no azimuth), exactly grazing, and opposite.
   MeasurementTable table;
-  const glm::dvec3 dirs[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, 0, 1},
-                             {0, 0, -1}, {0.6, 0.0, 0.8}};
+  const glm::dvec3 dirs[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
+                             {0, 0, 1}, {0, 0, -1}, {0.6, 0.0, 0.8}};
   for (const glm::dvec3& wi : dirs) {
     for (const glm::dvec3& wo : dirs) {
       TableRow row;
