@@ -94,10 +94,19 @@ int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
 }  // namespace
 
 int RunFit(int argc, char** argv) {
+  // Lafortune fits take other options (apps/cmd_fit_lafortune.cc).
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--model=lafortune" ||
+        (a == "--model" && i + 1 < argc && std::string(argv[i + 1]) == "lafortune")) {
+      return RunFitLafortune(argc, argv);
+    }
+  }
   CommandArgs args(
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
-      "--preset NAME] --out P.json [options]",
+      "--preset NAME] --out P.json [options]\n       clothfit fit --model "
+      "lafortune ... (see clothfit fit --model lafortune --help)",
       "Fits a model to a measurement table with Ceres (Levenberg-Marquardt, "
       "automatic derivatives, bounds),\nwrites the parameters with a \"fit\" "
       "object (errors, standard deviations), and prints a summary.\nthread: "
@@ -105,7 +114,7 @@ int RunFit(int argc, char** argv) {
       "the weave comes from\n--init or --preset; by default albedo, kd, "
       "gamma_s_deg, gamma_v_deg of every thread are free.\nExit status 1 when "
       "the fit reaches no usable solution or does not converge.");
-  args.Option("model", "M", "thread or cloth");
+  args.Option("model", "M", "thread, cloth (or lafortune)");
   args.Option("data", "T.csv", "measurement table (SPEC §2)");
   args.Option("init", "P.json", "initial parameters");
   args.Option("preset", "NAME", "initial parameters from a preset (cloth)");

@@ -4,14 +4,51 @@
 
 #include "apps/commands.h"
 #include "data_synthetic/synthetic_table.h"
+#include "data_synthetic/virtual_gonio.h"
+#include "io/image_stack.h"
 
 namespace clothfit {
+
+namespace {
+
+// clothfit synth --gonio PATTERN: the virtual gonioreflectometer.
+int RunGonio(const CommandArgs& args) {
+  VirtualGonioOptions options;
+  if (!ParseWeavePattern(args.Get("gonio"), &options.pattern)) {
+    args.Fail("option '--gonio': expected plain, satin or knit, got '" +
+              args.Get("gonio") + "'");
+  }
+  const long texels = args.GetInt("texels");
+  const long directions = args.GetInt("directions");
+  if (texels < 1 || texels > 1024) args.Fail("option '--texels': must be in [1, 1024]");
+  if (directions < 1 || directions > 64) {
+    args.Fail("option '--directions': must be in [1, 64]");
+  }
+  options.texels = static_cast<int>(texels);
+  options.directions = static_cast<int>(directions);
+  options.seed = static_cast<uint64_t>(args.GetInt("seed"));
+  const MeasurementTable table = MeasureVirtualGonio(options);
+  if (args.Has("stack")) {
+    const std::string ext = args.Get("image-ext");
+    if (ext != ".exr" && ext != ".png" && ext != ".tif" && ext != ".tiff") {
+      args.Fail("option '--image-ext': expected .exr, .png or .tif");
+    }
+    WriteImageStack(table, args.Get("stack"), ext, true);
+  } else {
+    WriteTable(table, args.Required("out"));
+  }
+  return 0;
+}
+
+}  // namespace
 
 int RunSynth(int argc, char** argv) {
   CommandArgs args(
       "synth",
       "clothfit synth (--params P.json | --preset NAME) --out T.csv "
-      "[--rows N] [--noise F] [--seed S] [--dirs D.csv] [--quantity Q]",
+      "[--rows N] [--noise F] [--seed S] [--dirs D.csv] [--quantity Q]\n"
+      "       clothfit synth --gonio plain|satin|knit [--texels S] "
+      "[--directions N] [--seed S] (--out T.csv | --stack M.csv)",
       "Writes a synthetic measurement table: the model's values at random "
       "directions (uniform in solid angle,\n5 % of rows at grazing 89.9 deg) "
       "or at the directions of D.csv, with multiplicative Gaussian noise.\n"
@@ -28,7 +65,16 @@ int RunSynth(int argc, char** argv) {
   args.Option("max-theta-deg", "DEG",
               "largest polar angle of random directions, (0, 90]", "90");
   args.Option("quantity", "Q", "brdf or cosine_weighted", "brdf");
+  args.Option("gonio", "PATTERN",
+              "virtual gonioreflectometer over woven micro-geometry: plain, "
+              "satin or knit (instead of a model)");
+  args.Option("texels", "S", "gonio: S x S texels", "8");
+  args.Option("directions", "N", "gonio: N x N light and view directions", "8");
+  args.Option("stack", "M.csv", "gonio: write an image stack (manifest) "
+              "instead of --out");
+  args.Option("image-ext", "EXT", "gonio stack image format", ".exr");
   if (!args.Parse(argc, argv, 2)) return 0;
+  if (args.Has("gonio")) return RunGonio(args);
   const ParamFile model = LoadModelOption(args);
   const std::string out_path = args.Required("out");
   SynthOptions options;

@@ -13,6 +13,7 @@ namespace clothfit {
 
 int RunEval(int argc, char** argv);
 int RunFit(int argc, char** argv);
+int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);

@@ -13,6 +13,9 @@
 namespace clothfit {
 namespace {
 
+// How models/lafortune.h interpolates the lookup table between views.
+constexpr char kLutInterpolation[] = "shepard, angular distance power 3";
+
 // Ordered, so that a "fit" object keeps its key order through a rewrite.
 using json = nlohmann::ordered_json;
 
@@ -206,7 +209,9 @@ void AppendPretty(const json& j, int indent, std::string* out) {
 }  // namespace
 
 const char* ModelName(const ModelParams& params) {
-  return std::holds_alternative<ThreadParams>(params) ? "thread" : "cloth";
+  if (std::holds_alternative<ThreadParams>(params)) return "thread";
+  if (std::holds_alternative<LafortuneModel>(params)) return "lafortune";
+  return "cloth";
 }
 
 ParamFile ParseParamFile(const std::string& text, const std::string& name) {
@@ -239,9 +244,65 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     const std::string e = ValidateClothParams(c);
     if (!e.empty()) FailValidation(name, e);
     out.params = c;
+  } else if (model == "lafortune") {
+    LafortuneModel m;
+    m.params.diffuse = r.Rgb("diffuse");
+    const json& lobes = r.Get("lobes");
+    if (!lobes.is_array()) r.Fail("lobes", "must be an array of objects");
+    for (size_t k = 0; k < lobes.size(); ++k) {
+      ObjectReader lr(lobes[k], name, "lobes[" + std::to_string(k) + "]");
+      LafortuneLobe lobe;
+      lobe.cx = lr.Rgb("Cx");
+      lobe.cy = lr.Rgb("Cy");
+      lobe.cz = lr.Rgb("Cz");
+      lobe.n = lr.Rgb("N");
+      lr.Finish();
+      m.params.lobes.push_back(lobe);
+    }
+    if (r.Has("lut")) {
+      ObjectReader lut(r.Get("lut"), name, "lut");
+      const json& views = lut.Get("views");
+      const json& colors = lut.Get("color");
+      if (!views.is_array() || !colors.is_array()) {
+        lut.Fail("lut", "views and color must be arrays of [x, y, z] / [r, g, b]");
+      }
+      auto vec3_at = [&](const json& list, size_t k, const std::string& key) {
+        const std::string where = "lut." + key + "[" + std::to_string(k) + "]";
+        const json& e = list[k];
+        if (!e.is_array() || e.size() != 3) r.Fail(where, "must be 3 numbers");
+        glm::dvec3 v;
+        for (int c = 0; c < 3; ++c) {
+          if (!e[c].is_number()) r.Fail(where, "must be 3 numbers");
+          v[c] = e[c].get<double>();
+        }
+        return v;
+      };
+      for (size_t k = 0; k < views.size(); ++k) {
+        m.lut.views.push_back(vec3_at(views, k, "views"));
+      }
+      for (size_t k = 0; k < colors.size(); ++k) {
+        m.lut.color.push_back(vec3_at(colors, k, "color"));
+      }
+      m.lut.alpha = lut.NumberArray("alpha");
+      if (lut.Has("interpolation") &&
+          lut.String("interpolation") != kLutInterpolation) {
+        lut.Fail("lut.interpolation",
+                 std::string("only \"") + kLutInterpolation + "\" is known");
+      }
+      lut.Finish();
+      for (glm::dvec3& v : m.lut.views) {
+        const double len = glm::length(v);
+        if (len > 0.0) v /= len;
+      }
+    }
+    std::string e = ValidateLafortuneParams(m.params);
+    if (e.empty()) e = ValidateViewTable(m.lut);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = m;
   } else {
     r.Fail("model", "unknown model \"" + model +
-                        "\" (expected \"thread\" or \"cloth\")");
+                        "\" (expected \"thread\", \"cloth\" or "
+                        "\"lafortune\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -255,8 +316,32 @@ ParamFile ReadParamFile(const std::string& path) {
 std::string FormatParamFile(const ParamFile& file) {
   json j;
   j["model"] = ModelName(file.params);
+  auto rgb = [](const glm::dvec3& v) { return json{v.x, v.y, v.z}; };
   if (const auto* p = std::get_if<ThreadParams>(&file.params)) {
     WriteThreadKeys(*p, &j);
+  } else if (const auto* m = std::get_if<LafortuneModel>(&file.params)) {
+    j["diffuse"] = rgb(m->params.diffuse);
+    json lobes = json::array();
+    for (const LafortuneLobe& lobe : m->params.lobes) {
+      json l;
+      l["Cx"] = rgb(lobe.cx);
+      l["Cy"] = rgb(lobe.cy);
+      l["Cz"] = rgb(lobe.cz);
+      l["N"] = rgb(lobe.n);
+      lobes.push_back(l);
+    }
+    j["lobes"] = lobes;
+    if (!m->lut.views.empty()) {
+      json views = json::array(), colors = json::array();
+      for (size_t k = 0; k < m->lut.views.size(); ++k) {
+        views.push_back(rgb(m->lut.views[k]));
+        colors.push_back(rgb(m->lut.color[k]));
+      }
+      j["lut"] = {{"interpolation", kLutInterpolation},
+                  {"views", views},
+                  {"color", colors},
+                  {"alpha", m->lut.alpha}};
+    }
   } else {
     const ClothParams& c = std::get<ClothParams>(file.params);
     json threads = json::array();

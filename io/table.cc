@@ -45,15 +45,17 @@ enum ColumnId : int {
   kSigmaG,
   kSigmaB,
   kWeight,
+  kAlpha,
   kS,
   kT,
   kColumnCount
 };
 
 constexpr std::array<const char*, kColumnCount> kColumnNames = {
-    "theta_i", "phi_i",   "theta_o", "phi_o",   "wi_x",   "wi_y", "wi_z",
-    "wo_x",    "wo_y",    "wo_z",    "value",   "r",      "g",    "b",
-    "sigma",   "sigma_r", "sigma_g", "sigma_b", "weight", "s",    "t"};
+    "theta_i", "phi_i", "theta_o", "phi_o",   "wi_x",    "wi_y",
+    "wi_z",    "wo_x",  "wo_y",    "wo_z",    "value",   "r",
+    "g",       "b",     "sigma",   "sigma_r", "sigma_g", "sigma_b",
+    "weight",  "alpha", "s",       "t"};
 
 bool IsSpace(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' ||
@@ -238,7 +240,7 @@ void TableParser::ParseHeader(std::string_view text, int line) {
            "unknown column " + Quote(name) + " (expected " +
                "theta_i,phi_i,theta_o,phi_o or wi_x,wi_y,wi_z,wo_x,wo_y,wo_z; "
                "value or r,g,b; optional sigma or sigma_r,sigma_g,sigma_b, "
-               "weight, s,t)");
+               "weight, alpha, s,t)");
     }
     const int column = static_cast<int>(known - kColumnNames.begin());
     if (Has(column)) {
@@ -313,6 +315,7 @@ void TableParser::ParseHeader(std::string_view text, int line) {
   }
   table.has_sigma = Has(kSigma) || per_channel_sigma >= 0;
   table.has_weight = Has(kWeight);
+  table.has_alpha = Has(kAlpha);
   if (Has(kS) || Has(kT)) RequireAll(kS, 2, line);
   table.has_texels = Has(kS);
 }
@@ -445,6 +448,14 @@ void TableParser::ParseRow(std::string_view text, int line) {
                            FormatNumber(numbers_[kWeight]));
     }
     row.weight = numbers_[kWeight];
+  }
+
+  if (Has(kAlpha)) {
+    if (numbers_[kAlpha] < 0.0 || numbers_[kAlpha] > 1.0) {
+      fail_at(kAlpha,
+              "must be in [0, 1], got " + FormatNumber(numbers_[kAlpha]));
+    }
+    row.alpha = numbers_[kAlpha];
   }
 
   if (Has(kS)) {
@@ -617,6 +628,7 @@ std::string FormatTable(const MeasurementTable& table) {
     }
   }
   if (table.has_weight) header.push_back("weight");
+  if (table.has_alpha) header.push_back("alpha");
   if (table.has_texels) header.insert(header.end(), {"s", "t"});
   for (size_t i = 0; i < header.size(); ++i) {
     if (i > 0) out += ',';
@@ -653,6 +665,7 @@ std::string FormatTable(const MeasurementTable& table) {
       }
     }
     if (table.has_weight) numbers.push_back(row.weight);
+    if (table.has_alpha) numbers.push_back(row.alpha);
     for (size_t i = 0; i < numbers.size(); ++i) {
       if (i > 0) out += ',';
       out += FormatNumber(numbers[i]);

@@ -34,6 +34,7 @@ struct TableRow {
   glm::dvec3 sigma{1.0};         // 1-sigma error per channel (> 0)
   double weight = 1.0;           // residual weight (>= 0)
   int s = -1, t = -1;            // texel indices, -1 when absent
+  double alpha = 1.0;            // coverage of the view, [0, 1] (column "alpha")
   int source_line = 0;           // 1-based line in the file (0: made in memory)
 };
 
@@ -46,6 +47,7 @@ struct MeasurementTable {
   bool has_sigma = false;
   bool has_weight = false;
   bool has_texels = false;  // s,t columns present
+  bool has_alpha = false;   // alpha column present (per-view coverage)
   std::vector<TableRow> rows;
 
   // Value of a metadata key (case-insensitive), if present.

@@ -4,6 +4,7 @@
 
 #include <variant>
 
+#include "models/lafortune.h"
 #include "models/math.h"
 #include "models/microcylinder_cloth.h"
 #include "models/microcylinder_thread.h"
@@ -11,7 +12,7 @@
 
 namespace clothfit {
 
-using ModelParams = std::variant<ThreadParams, ClothParams>;
+using ModelParams = std::variant<ThreadParams, ClothParams, LafortuneModel>;
 
 // Whether a model can predict a quantity (neither predicts transmittance).
 inline bool ModelPredicts(const ModelParams& /*params*/, Quantity q) {
@@ -48,6 +49,9 @@ inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
                            const glm::dvec3& wo, Quantity q) {
   if (const auto* p = std::get_if<ThreadParams>(&params)) {
     return ThreadValue(*p, wi, wo, q);
+  }
+  if (const auto* m = std::get_if<LafortuneModel>(&params)) {
+    return FromCosineWeighted(LafortuneRho(*m, wi, wo), wi.z, q);
   }
   return ClothValue(std::get<ClothParams>(params), wi, wo, q);
 }

@@ -193,6 +193,24 @@ TEST(TableTest, ReadsSigmaWeightAndTexels) {
   EXPECT_EQ(table.rows[1].t, 7);
 }
 
+TEST(TableTest, ReadsAlpha) {
+  const ReadTableResult result = ParseTable(
+      "theta_i,phi_i,theta_o,phi_o,Alpha,value\n1,2,3,4,0,5\n1,2,3,4,1,5\n"
+      "1,2,3,4,0.25,5\n",
+      "data.csv");
+  const MeasurementTable& table = result.table;
+  EXPECT_TRUE(table.has_alpha);
+  ASSERT_EQ(table.rows.size(), 3u);
+  EXPECT_EQ(table.rows[0].alpha, 0.0);
+  EXPECT_EQ(table.rows[1].alpha, 1.0);
+  EXPECT_EQ(table.rows[2].alpha, 0.25);
+  EXPECT_EQ(table.rows[2].value, glm::dvec3(5));
+
+  const ReadTableResult without = ParseTable(kGoodTable, "data.csv");
+  EXPECT_FALSE(without.table.has_alpha);
+  EXPECT_EQ(without.table.rows[0].alpha, 1.0);
+}
+
 TEST(TableTest, SingleSigmaAppliesToAllChannels) {
   const ReadTableResult result = ParseTable(
       "theta_i,phi_i,theta_o,phi_o,r,g,b,sigma\n1,2,3,4,1,2,3,0.5\n", "d.csv");
@@ -258,8 +276,8 @@ TEST(TableErrorTest, DuplicateColumn) {
 }
 
 TEST(TableErrorTest, UnknownColumn) {
-  ExpectError("theta_i,phi_i,theta_o,phi_o,r,g,b,alpha\n1,2,3,4,5,6,7,8\n",
-              {"data.csv:1:8:", "'alpha'", "unknown"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,r,g,b,beta\n1,2,3,4,5,6,7,8\n",
+              {"data.csv:1:8:", "'beta'", "unknown"});
   ExpectError("theta_i,,theta_o,phi_o,r,g,b\n1,2,3,4,5,6,7\n",
               {"data.csv:1:2:", "empty column name"});
 }
@@ -344,6 +362,17 @@ TEST(TableErrorTest, NonPositiveSigma) {
 TEST(TableErrorTest, NegativeWeight) {
   ExpectError("theta_i,phi_i,theta_o,phi_o,value,weight\n1,2,3,4,5,-0.5\n",
               {"data.csv:2:6:", "'weight'", "non-negative"});
+}
+
+TEST(TableErrorTest, AlphaOutOfRange) {
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,alpha\n1,2,3,4,5,1.5\n",
+              {"data.csv:2:6:", "column 'alpha': must be in [0, 1]"});
+  ExpectError("alpha,theta_i,phi_i,theta_o,phi_o,value\n-0.01,1,2,3,4,5\n",
+              {"data.csv:2:1:", "column 'alpha': must be in [0, 1]"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,alpha\n1,2,3,4,5,nan\n",
+              {"data.csv:2:6:", "'alpha'", "finite"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,alpha,ALPHA\n1,2,3,4,5,1,1\n",
+              {"data.csv:1:7:", "duplicate column 'alpha'"});
 }
 
 TEST(TableErrorTest, BadTexelIndex) {
@@ -514,6 +543,7 @@ void ExpectSameTable(const MeasurementTable& a, const MeasurementTable& b) {
   EXPECT_EQ(a.has_sigma, b.has_sigma);
   EXPECT_EQ(a.has_weight, b.has_weight);
   EXPECT_EQ(a.has_texels, b.has_texels);
+  EXPECT_EQ(a.has_alpha, b.has_alpha);
   ASSERT_EQ(a.rows.size(), b.rows.size());
   for (size_t i = 0; i < a.rows.size(); ++i) {
     ExpectNear(a.rows[i].wi, b.rows[i].wi, 2e-15);
@@ -562,6 +592,29 @@ TEST(TableTest, RoundTripVectorsOneChannel) {
       std::string::npos)
       << text;
   ExpectSameTable(ParseTable(text, "mem").table, table);
+}
+
+TEST(TableTest, RoundTripAlpha) {
+  MeasurementTable table = SampleTable(DirectionColumns::kAngles);
+  table.has_alpha = true;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    table.rows[i].alpha = static_cast<double>(i) / 49.0;
+  }
+  const std::string text = FormatTable(table);
+  EXPECT_NE(text.find("\ntheta_i,phi_i,theta_o,phi_o,r,g,b,sigma_r,sigma_g,"
+                      "sigma_b,weight,alpha,s,t\n"),
+            std::string::npos)
+      << text;
+  const MeasurementTable back = ParseTable(text, "mem").table;
+  ExpectSameTable(back, table);
+  EXPECT_TRUE(back.has_alpha);
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    EXPECT_EQ(back.rows[i].alpha, table.rows[i].alpha);
+  }
+
+  // Without has_alpha the column is not written.
+  table.has_alpha = false;
+  EXPECT_EQ(FormatTable(table).find("alpha"), std::string::npos);
 }
 
 TEST(TableTest, RoundTripTransmittance) {

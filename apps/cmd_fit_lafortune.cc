@@ -1,0 +1,217 @@
+// clothfit fit --model lafortune: Lafortune lobes with per-view lookup
+// tables (Daubert et al. 2001) for one table, or per texel and mip level
+// for a spatially varying table or image stack.
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "fitting/lafortune_fit.h"
+#include "fitting/lafortune_mip.h"
+#include "io/image_stack.h"
+#include "io/param_mipmap.h"
+
+namespace clothfit {
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// A progress bar on a terminal: "[#####.....] 512/1365 texels".
+void ShowProgress(int done, int total) {
+  constexpr int kWidth = 30;
+  const int filled = total > 0 ? done * kWidth / total : kWidth;
+  std::cerr << "\r\033[K[" << std::string(filled, '#')
+            << std::string(kWidth - filled, '.') << "] " << done << "/"
+            << total << " texel fits" << std::flush;
+  if (done == total) std::cerr << "\n";
+}
+
+}  // namespace
+
+int RunFitLafortune(int argc, char** argv) {
+  CommandArgs args(
+      "fit",
+      "clothfit fit --model lafortune (--data T.csv | --stack M.csv) "
+      "--out P.json|P.exr [--lobes K | --tolerance REL] [--mip] [options]",
+      "Fits Lafortune lobes with a per-view lookup table T(v) (Daubert et "
+      "al. 2001): lobes by Levenberg-Marquardt with T fixed,\nthen T in "
+      "closed form, alternately. A table without s,t columns gives one "
+      "model, written as a parameter file (JSON).\nA table with s,t columns "
+      "(or an image stack) is fitted per texel in parallel, with --mip also "
+      "per 2x2, 4x4, ... group down to 1x1,\nand written as a tiled, "
+      "mip-mapped OpenEXR (one channel per parameter) with a JSON index "
+      "(P.exr.json).");
+  args.Option("model", "M", "lafortune");
+  args.Option("data", "T.csv", "measurement table (SPEC §2), s,t optional");
+  args.Option("stack", "M.csv", "image-stack manifest instead of --data");
+  args.Option("out", "P.json|P.exr", "result: JSON for one model, EXR per texel");
+  args.Option("lobes", "K", "number of lobes, 0 to 3", "2");
+  args.Option("tolerance", "REL",
+              "per texel, the smallest K (0..3) whose relative rms error is "
+              "at most REL");
+  args.Flag("mip", "also fit the mip levels (2x2 groups down to 1x1)");
+  args.Flag("no-lut", "no lookup table (T = 1)");
+  args.Option("lut-threshold", "X",
+              "stop alternating when T changes less than this (mean relative)",
+              "0.1");
+  args.Option("alternations", "N", "cap on lobe/T alternations", "10");
+  args.Option("max-iterations", "N", "Levenberg-Marquardt iterations per pass",
+              "50");
+  args.Option("threads", "N", "texel fits in parallel (0: all cores)", "0");
+  args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  const std::string out_path = args.Required("out");
+  if (args.Has("data") == args.Has("stack")) {
+    args.Fail("give exactly one of --data and --stack");
+  }
+  LafortuneMipOptions options;
+  const long lobes = args.GetInt("lobes");
+  if (lobes < 0 || lobes > 3) args.Fail("option '--lobes': must be 0 to 3");
+  options.fit.lobes = static_cast<int>(lobes);
+  options.fit.lookup_table = !args.Has("no-lut");
+  options.fit.lut_threshold = args.GetDouble("lut-threshold");
+  if (!(options.fit.lut_threshold >= 0.0)) {
+    args.Fail("option '--lut-threshold': must be >= 0");
+  }
+  const long alternations = args.GetInt("alternations");
+  const long iterations = args.GetInt("max-iterations");
+  const long threads = args.GetInt("threads");
+  if (alternations < 1 || alternations > 1000) {
+    args.Fail("option '--alternations': must be in [1, 1000]");
+  }
+  if (iterations < 1 || iterations > 10000) {
+    args.Fail("option '--max-iterations': must be in [1, 10000]");
+  }
+  if (threads < 0 || threads > 256) {
+    args.Fail("option '--threads': must be in [0, 256]");
+  }
+  options.fit.max_alternations = static_cast<int>(alternations);
+  options.fit.max_iterations = static_cast<int>(iterations);
+  options.threads = static_cast<int>(threads);
+  options.mip = args.Has("mip");
+  if (args.Has("tolerance")) {
+    options.tolerance = args.GetDouble("tolerance");
+    if (!(options.tolerance > 0.0)) args.Fail("option '--tolerance': must be > 0");
+  }
+  MeasurementTable table;
+  if (args.Has("stack")) {
+    table = ReadImageStack(args.Get("stack"));
+  } else {
+    ReadTableOptions read_options;
+    read_options.skip_invalid = args.Has("skip-invalid");
+    const ReadTableResult read = ReadTable(args.Get("data"), read_options);
+    if (read.skipped > 0) {
+      std::cerr << "warning: skipped " << read.skipped
+                << " invalid row(s); first: " << read.first_skip_reason << "\n";
+    }
+    table = read.table;
+  }
+
+  if (!table.has_texels) {  // one model for the whole table
+    if (!EndsWith(out_path, ".json")) {
+      args.Fail("a table without s,t columns gives one model: --out must be "
+                "a .json parameter file");
+    }
+    if (options.mip) args.Fail("--mip needs a table with s,t columns");
+    const ViewIndex views(table);
+    std::vector<size_t> rows(table.rows.size());
+    for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+    int skipped = 0;
+    const TexelSamples samples = CollectSamples(table, views, rows, &skipped);
+    if (skipped > 0) {
+      std::cerr << "warning: " << skipped
+                << " row(s) are not reflection (wi.z or wo.z <= 0) and are "
+                   "not used\n";
+    }
+    LafortuneFitResult best;
+    int chosen_lobes = options.fit.lobes;
+    for (int k = options.tolerance > 0 ? 0 : options.fit.lobes;
+         k <= (options.tolerance > 0 ? 3 : options.fit.lobes); ++k) {
+      LafortuneFitOptions o = options.fit;
+      o.lobes = k;
+      const LafortuneFitResult r = FitLafortune(samples, o);
+      if (k == 0 || !best.usable || (r.usable && r.relative_rms < best.relative_rms)) {
+        best = r;
+        chosen_lobes = k;
+      }
+      if (options.tolerance > 0 && r.usable && r.relative_rms <= options.tolerance) {
+        best = r;
+        chosen_lobes = k;
+        break;
+      }
+    }
+    std::printf("lafortune fit: %s, %d lobe(s), %d alternation(s), %d "
+                "iterations\nrms %.4g, relative rms %.4g over %zu samples\n",
+                best.usable ? "usable" : "FAILED", chosen_lobes,
+                best.alternations, best.iterations, best.rms,
+                best.relative_rms, samples.size());
+    if (!best.usable) {
+      std::cerr << "error: the fit did not reach a usable solution: "
+                << best.message << "; nothing written\n";
+      return 1;
+    }
+    nlohmann::ordered_json fit;
+    fit["usable"] = true;
+    fit["lobes"] = chosen_lobes;
+    fit["alternations"] = best.alternations;
+    fit["iterations"] = best.iterations;
+    fit["rms"] = best.rms;
+    fit["relative_rms"] = best.relative_rms;
+    fit["lut_change"] = best.lut_change;
+    fit["samples"] = samples.size();
+    WriteParamFile(ParamFile{best.model, fit.dump()}, out_path);
+    std::printf("wrote %s\n", out_path.c_str());
+    return 0;
+  }
+
+  if (!EndsWith(out_path, ".exr")) {
+    args.Fail("a table with s,t columns gives a model per texel: --out must "
+              "be an .exr file");
+  }
+  if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
+  const LafortuneMipResult result = FitLafortuneMip(table, options);
+  int unusable = 0;
+  double worst = 0.0;
+  for (const LafortuneLevel& level : result.levels) {
+    for (const TexelFit& t : level.texels) {
+      unusable += !t.usable;
+      worst = std::max(worst, t.relative_rms);
+    }
+  }
+  std::printf("lafortune fits: %d texel fit(s) over %zu level(s) in %.2f s "
+              "(%.1f fits/s), worst relative rms %.4g\n",
+              result.fits, result.levels.size(), result.seconds,
+              result.fits / std::max(result.seconds, 1e-9), worst);
+  for (size_t l = 0; l < result.levels.size(); ++l) {
+    const LafortuneLevel& level = result.levels[l];
+    double sum = 0.0;
+    int counts[4] = {0, 0, 0, 0};
+    for (const TexelFit& t : level.texels) {
+      sum += t.relative_rms;
+      ++counts[std::clamp(t.lobes, 0, 3)];
+    }
+    std::printf("  level %zu: %dx%d, %zu samples, mean relative rms %.4g, "
+                "lobes 0/1/2/3: %d/%d/%d/%d\n",
+                l, level.width, level.height, level.samples,
+                sum / level.texels.size(), counts[0], counts[1], counts[2],
+                counts[3]);
+  }
+  WriteParamMipmap(ToParamMipmap(result), out_path);
+  std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
+  if (unusable > 0) {
+    std::cerr << "error: " << unusable
+              << " texel fit(s) reached no usable solution (zero in the "
+                 "output)\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,376 @@
+#include "fitting/lafortune_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <memory>
+#include <unordered_map>
+
+#include <ceres/ceres.h>
+
+#include "io/input_error.h"
+#include "models/evaluate.h"
+
+namespace clothfit {
+namespace {
+
+long long Round(double x) { return std::llround(x * 1e9); }
+
+struct KeyHash {
+  size_t operator()(const std::array<long long, 6>& k) const {
+    size_t h = 1469598103934665603ULL;
+    for (long long v : k) h = (h ^ static_cast<size_t>(v)) * 1099511628211ULL;
+    return h;
+  }
+};
+
+// All residuals of one channel of one texel: (T(v_i) f1(l_i, v_i) - y_i)
+// sqrt(w_i), with T fixed (eq. 3 with the lookup table of the last pass).
+template <int kLobes>
+struct ChannelResidual {
+  const TexelSamples* samples;
+  std::vector<double> lut;  // T(v) of this channel, per view
+  int channel;
+
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    const TexelSamples& s = *samples;
+    for (size_t i = 0; i < s.size(); ++i) {
+      const T f = LafortuneF1Channel(x, kLobes, s.l[i], s.v[i]);
+      residual[i] = (T(lut[s.view[i]]) * f - T(s.value[i][channel])) *
+                    T(std::sqrt(s.weight[i][channel]));
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const TexelSamples* samples,
+                                     std::vector<double> lut, int channel) {
+    auto* f = new ChannelResidual{samples, std::move(lut), channel};
+    return new ceres::AutoDiffCostFunction<ChannelResidual, ceres::DYNAMIC,
+                                           1 + 4 * kLobes>(
+        f, static_cast<int>(samples->size()));
+  }
+};
+
+ceres::CostFunction* MakeChannelCost(int lobes, const TexelSamples* samples,
+                                     std::vector<double> lut, int channel) {
+  switch (lobes) {
+    case 0:
+      return ChannelResidual<0>::Create(samples, std::move(lut), channel);
+    case 1:
+      return ChannelResidual<1>::Create(samples, std::move(lut), channel);
+    case 2:
+      return ChannelResidual<2>::Create(samples, std::move(lut), channel);
+    default:
+      return ChannelResidual<3>::Create(samples, std::move(lut), channel);
+  }
+}
+
+// Bounds keep every lobe value finite: the lobe base a = C . (l * v) is at
+// most |Cx| + |Cy| + |Cz| <= 9 for |C| <= 3, and 9^200 ~ 1e191, so a
+// trial step of the solver never overflows (Ceres rejects and logs
+// non-finite residuals). rho_d in [0, 1e3]; N in [0.5, 200] (positive; N
+// below 0.5 makes a lobe a near-constant); T in [0, 1e3].
+constexpr double kMinN = 0.5, kMaxN = 200.0, kMaxC = 3.0, kMaxT = 1e3;
+
+// One Levenberg-Marquardt pass on one channel; returns iterations.
+int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
+                 int channel, int lobes, int max_iterations, double* x) {
+  // Ceres refuses (and logs) a start whose cost is not finite; such a start
+  // (a lobe power overflowing) is left as it is and the caller sees the
+  // non-finite cost.
+  double start_cost = 0.0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const double f = LafortuneF1Channel(x, lobes, samples.l[i], samples.v[i]);
+    const double d = lut[samples.view[i]] * f - samples.value[i][channel];
+    start_cost += samples.weight[i][channel] * d * d;
+  }
+  if (!std::isfinite(start_cost)) return 0;
+  ceres::Problem problem;
+  problem.AddResidualBlock(MakeChannelCost(lobes, &samples, lut, channel),
+                           nullptr, x);
+  problem.SetParameterLowerBound(x, 0, 0.0);
+  problem.SetParameterUpperBound(x, 0, 1e3);
+  for (int k = 0; k < lobes; ++k) {
+    for (int i = 0; i < 3; ++i) {
+      problem.SetParameterLowerBound(x, 1 + 4 * k + i, -kMaxC);
+      problem.SetParameterUpperBound(x, 1 + 4 * k + i, kMaxC);
+    }
+    problem.SetParameterLowerBound(x, 4 + 4 * k, kMinN);
+    problem.SetParameterUpperBound(x, 4 + 4 * k, kMaxN);
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = max_iterations;
+  options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return static_cast<int>(summary.iterations.size());
+}
+
+// The lobes of the paper's start (Section 5): grey diffuse, moderate
+// highlight, slightly anisotropic lobes (Cx = 1.22 Cy for the first,
+// Cy = 1.22 Cx for the second lobe).
+LafortuneParams PaperStart(int lobes, double diffuse, double c) {
+  LafortuneParams p;
+  p.diffuse = glm::dvec3(diffuse);
+  for (int k = 0; k < lobes; ++k) {
+    LafortuneLobe lobe;
+    const double ax = k % 2 == 0 ? 1.22 : 1.0, ay = k % 2 == 0 ? 1.0 : 1.22;
+    lobe.cx = glm::dvec3(-c * ax);
+    lobe.cy = glm::dvec3(-c * ay);
+    lobe.cz = glm::dvec3(c);
+    lobe.n = glm::dvec3(10.0);
+    p.lobes.push_back(lobe);
+  }
+  return p;
+}
+
+// Weighted sums of the model against the data: cost, and the T update.
+struct PassResult {
+  double cost = 0.0;
+  int iterations = 0;
+};
+
+// Fits all three channels' lobes with the given lookup table.
+PassResult FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
+                    const LafortuneFitOptions& options, LafortuneParams* p) {
+  PassResult out;
+  const int lobes = static_cast<int>(p->lobes.size());
+  std::vector<double> x(LafortuneChannelSize(lobes));
+  for (int c = 0; c < 3; ++c) {
+    ToArray(*p, c, x.data());
+    std::vector<double> lut(t.size());
+    for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
+    out.iterations +=
+        SolveChannel(samples, lut, c, lobes, options.max_iterations, x.data());
+    LafortuneChannelFromArray(x.data(), c, p);
+  }
+  return out;
+}
+
+double Cost(const TexelSamples& s, const std::vector<glm::dvec3>& t,
+            const LafortuneParams& p) {
+  double cost = 0.0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const glm::dvec3 m = t[s.view[i]] * LafortuneF1(p, s.l[i], s.v[i]);
+    const glm::dvec3 d = m - s.value[i];
+    cost += glm::dot(s.weight[i] * d, d);
+  }
+  return std::isfinite(cost) ? cost : HUGE_VAL;
+}
+
+bool Finite(const LafortuneParams& p) {
+  bool ok = std::isfinite(glm::dot(p.diffuse, glm::dvec3(1.0)));
+  for (const LafortuneLobe& l : p.lobes) {
+    ok = ok && std::isfinite(glm::dot(l.cx + l.cy + l.cz + l.n, glm::dvec3(1)));
+  }
+  return ok;
+}
+
+}  // namespace
+
+ViewIndex::ViewIndex(const MeasurementTable& table) {
+  std::unordered_map<std::array<long long, 6>, int, KeyHash> views, pairs;
+  row_view_.resize(table.rows.size());
+  row_pair_.resize(table.rows.size());
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    const std::array<long long, 6> view = {Round(row.wo.x), Round(row.wo.y),
+                                           Round(row.wo.z), 0, 0, 0};
+    std::array<long long, 6> pair = view;
+    pair[3] = Round(row.wi.x);
+    pair[4] = Round(row.wi.y);
+    pair[5] = Round(row.wi.z);
+    auto v = views.emplace(view, static_cast<int>(views_.size()));
+    if (v.second) views_.push_back(row.wo);
+    row_view_[i] = v.first->second;
+    row_pair_[i] = pairs.emplace(pair, pairs_).first->second;
+    if (row_pair_[i] == pairs_) ++pairs_;
+  }
+}
+
+TexelSamples CollectSamples(const MeasurementTable& table,
+                            const ViewIndex& views,
+                            const std::vector<size_t>& rows, int* skipped) {
+  if (table.quantity == Quantity::kTransmittance) {
+    throw InputError("a Lafortune model predicts reflection (brdf or "
+                     "cosine_weighted), not transmittance");
+  }
+  TexelSamples s;
+  s.views = views.views();
+  std::vector<double> alpha_sum(s.views.size(), 0.0);
+  std::vector<int> alpha_count(s.views.size(), 0);
+  std::vector<int> slot(views.pairs(), -1);  // pair -> sample
+  std::vector<glm::dvec3> sum_wy;            // per sample: sum w y
+  int dropped = 0;
+  for (size_t index : rows) {
+    const TableRow& row = table.rows[index];
+    if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) {
+      ++dropped;
+      continue;
+    }
+    // Values as rho; sigma likewise (rho = f wi.z).
+    const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
+    const glm::dvec3 sigma = row.sigma * to_rho;
+    const glm::dvec3 w = row.weight / (sigma * sigma);
+    const int view = views.RowView(index);
+    int& k = slot[views.RowPair(index)];
+    if (k < 0) {
+      k = static_cast<int>(s.l.size());
+      s.l.push_back(row.wi);
+      s.v.push_back(row.wo);
+      s.view.push_back(view);
+      s.weight.push_back(glm::dvec3(0.0));
+      s.value.push_back(glm::dvec3(0.0));
+      sum_wy.push_back(glm::dvec3(0.0));
+    }
+    s.weight[k] += w;
+    sum_wy[k] += w * row.value * to_rho;
+    s.value[k] += row.value * to_rho;  // plain sum, for zero weights
+    s.count_rows.resize(s.l.size(), 0);
+    ++s.count_rows[k];
+    alpha_sum[view] += row.alpha;
+    ++alpha_count[view];
+  }
+  for (size_t k = 0; k < s.l.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      s.value[k][c] = s.weight[k][c] > 0.0 ? sum_wy[k][c] / s.weight[k][c]
+                                           : s.value[k][c] / s.count_rows[k];
+    }
+  }
+  s.view_alpha.resize(s.views.size());
+  for (size_t k = 0; k < s.views.size(); ++k) {
+    s.view_alpha[k] = alpha_count[k] ? alpha_sum[k] / alpha_count[k] : 1.0;
+  }
+  if (skipped) *skipped = dropped;
+  return s;
+}
+
+void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
+                     const std::vector<size_t>& rows, double* rms,
+                     double* relative_rms) {
+  double se = 0.0, ss = 0.0;
+  size_t n = 0;
+  for (size_t index : rows) {
+    const TableRow& row = table.rows[index];
+    if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) continue;
+    const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
+    const glm::dvec3 y = row.value * to_rho;
+    const glm::dvec3 d = LafortuneRho(model, row.wi, row.wo) - y;
+    se += glm::dot(d, d);
+    ss += glm::dot(y, y);
+    ++n;
+  }
+  *rms = n ? std::sqrt(se / (3.0 * n)) : 0.0;
+  *relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+}
+
+LafortuneFitResult FitLafortune(const TexelSamples& samples,
+                                const LafortuneFitOptions& options) {
+  LafortuneFitResult out;
+  const int lobes = std::clamp(options.lobes, 0, 3);
+  const size_t n_views = samples.views.size();
+  std::vector<glm::dvec3> t(n_views, glm::dvec3(1.0));
+  out.model.lut.views = samples.views;
+  out.model.lut.alpha = samples.view_alpha;
+  if (samples.size() == 0) {
+    out.model.params = PaperStart(lobes, 0.0, 1.0);
+    out.model.lut.color = t;
+    out.message = "no samples";
+    return out;
+  }
+  // Starts: the paper's, and one scaled to the data: rho_d from the
+  // weighted least squares of f1 = l.z rho_d, lobes sized so that their peak
+  // c^N matches the brightest excess over it.
+  glm::dvec3 num(0.0), den(0.0), peak(0.0);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    num += samples.weight[i] * samples.value[i] * samples.l[i].z;
+    den += samples.weight[i] * samples.l[i].z * samples.l[i].z;
+  }
+  const glm::dvec3 rho_d =
+      glm::dvec3(den.x > 0 ? num.x / den.x : 0.0, den.y > 0 ? num.y / den.y : 0.0,
+                 den.z > 0 ? num.z / den.z : 0.0);
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const glm::dvec3 excess =
+        samples.value[i] / std::max(samples.l[i].z, 1e-3) - rho_d;
+    peak = glm::max(peak, excess);
+  }
+  std::vector<LafortuneParams> starts = {PaperStart(lobes, 0.5, 1.0)};
+  if (options.data_driven_start) {
+    const double mean_peak = std::max((peak.x + peak.y + peak.z) / 3.0, 1e-6);
+    LafortuneParams d = PaperStart(lobes, 0.0, std::pow(mean_peak, 0.1));
+    d.diffuse = glm::max(0.7 * rho_d, glm::dvec3(0.0));
+    starts.push_back(d);
+  }
+  LafortuneParams best;
+  double best_cost = HUGE_VAL;
+  for (LafortuneParams p : starts) {
+    out.iterations += FitLobes(samples, t, options, &p).iterations;
+    const double cost = Cost(samples, t, p);
+    if (Finite(p) && cost < best_cost) {
+      best_cost = cost;
+      best = p;
+    }
+  }
+  if (!(best_cost < HUGE_VAL)) {
+    out.model.params = starts.front();
+    out.model.lut.color = t;
+    out.message = "the lobe fit produced no finite solution";
+    return out;
+  }
+  out.alternations = 1;
+  // Alternation: T in closed form per view and channel (eq. 4), then the
+  // lobes again, until the mean relative change of T is small.
+  if (options.lookup_table) {
+    for (int pass = 1; pass < options.max_alternations; ++pass) {
+      std::vector<glm::dvec3> fr(n_views, glm::dvec3(0.0)),
+          ff(n_views, glm::dvec3(0.0));
+      for (size_t i = 0; i < samples.size(); ++i) {
+        const glm::dvec3 f = LafortuneF1(best, samples.l[i], samples.v[i]);
+        fr[samples.view[i]] += samples.weight[i] * f * samples.value[i];
+        ff[samples.view[i]] += samples.weight[i] * f * f;
+      }
+      // A view whose f is (nearly) zero carries no information on T: keep
+      // it rather than divide by ~0. T is a non-negative factor; it is kept
+      // in [0, kMaxT].
+      glm::dvec3 ff_max(0.0);
+      for (const glm::dvec3& f : ff) ff_max = glm::max(ff_max, f);
+      double change = 0.0;
+      int counted = 0;
+      for (size_t k = 0; k < n_views; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          if (!(ff[k][c] > 1e-12 * ff_max[c])) continue;  // no signal
+          const double updated = std::clamp(fr[k][c] / ff[k][c], 0.0, kMaxT);
+          change += std::abs(updated - t[k][c]) / std::max(std::abs(t[k][c]), 1e-12);
+          ++counted;
+          t[k][c] = updated;
+        }
+      }
+      out.lut_change = counted ? change / counted : 0.0;
+      LafortuneParams p = best;
+      out.iterations += FitLobes(samples, t, options, &p).iterations;
+      ++out.alternations;
+      if (Finite(p)) best = p;
+      if (out.lut_change < options.lut_threshold) break;
+    }
+  }
+  out.model.params = best;
+  out.model.lut.color = t;
+  double se = 0.0, ss = 0.0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const glm::dvec3 m =
+        t[samples.view[i]] * LafortuneF1(best, samples.l[i], samples.v[i]);
+    const glm::dvec3 d = m - samples.value[i];
+    se += glm::dot(d, d);
+    ss += glm::dot(samples.value[i], samples.value[i]);
+  }
+  out.rms = std::sqrt(se / (3.0 * samples.size()));
+  out.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+  out.usable = std::isfinite(out.rms);
+  if (!out.usable) out.message = "non-finite model values";
+  return out;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,95 @@
+// Fits Lafortune lobes with a per-view lookup table (Daubert et al. 2001,
+// Section 5; SPEC §3.3) to the samples of one texel (or one whole table):
+// alternately the lobes by Levenberg-Marquardt with T fixed (first pass
+// T = 1), then every T(v) in closed form per channel (eq. 4:
+// T = <f, r> / <f, f> over the samples of view v), until the mean relative
+// change of T falls below a threshold or an iteration cap.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "fitting/fit_result.h"
+#include "io/table.h"
+#include "models/lafortune.h"
+
+namespace clothfit {
+
+// The samples of one texel: directions in its local frame, values
+// (cosine-weighted), 1/sigma^2 * weight, and the index of the view.
+struct TexelSamples {
+  std::vector<glm::dvec3> l, v, value, weight;
+  std::vector<int> view;           // index into views
+  std::vector<int> count_rows;     // table rows merged into each sample
+  std::vector<glm::dvec3> views;   // the distinct view directions
+  std::vector<double> view_alpha;  // mean alpha of each view's samples
+  size_t size() const { return l.size(); }
+};
+
+// The distinct view directions (wo) and (light, view) pairs of a table,
+// equal to 1e-9, in order of first appearance, and each row's view and
+// pair. Built once per table; the views are shared by all texels so that
+// their lookup tables line up.
+class ViewIndex {
+ public:
+  explicit ViewIndex(const MeasurementTable& table);
+  const std::vector<glm::dvec3>& views() const { return views_; }
+  int RowView(size_t row) const { return row_view_[row]; }
+  int RowPair(size_t row) const { return row_pair_[row]; }
+  int pairs() const { return pairs_; }
+
+ private:
+  std::vector<glm::dvec3> views_;
+  std::vector<int> row_view_, row_pair_;
+  int pairs_ = 0;
+};
+
+// The samples of the given rows of a table, as the cosine-weighted
+// quantity, with all of the index's views (a view without samples gets
+// alpha 1 and keeps T = 1). Rows with the same (light, view) pair are
+// merged into one sample: their weighted mean value, with the sum of their
+// weights, which leaves the least-squares minimiser unchanged (sum_i w_i
+// (m - y_i)^2 = W (m - y_mean)^2 + const) and keeps the work of a pooled
+// mip-level fit at that of one texel. Rows that are not reflection (wi.z
+// <= 0 or wo.z <= 0) are skipped and counted in *skipped (may be null).
+// Throws InputError for a transmittance table.
+TexelSamples CollectSamples(const MeasurementTable& table,
+                            const ViewIndex& views,
+                            const std::vector<size_t>& rows, int* skipped);
+
+// RMS and relative RMS error of a model over table rows (as rho).
+void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
+                     const std::vector<size_t>& rows, double* rms,
+                     double* relative_rms);
+
+struct LafortuneFitOptions {
+  int lobes = 2;                 // K, 0 to 3
+  bool lookup_table = true;      // false: T = 1 (no alternation)
+  double lut_threshold = 0.1;    // mean relative change of T that stops
+  int max_alternations = 10;     // cap on lobe/T alternations
+  int max_iterations = 50;       // Levenberg-Marquardt iterations per pass
+  // Starts: the paper's (grey, moderate highlight, slightly anisotropic
+  // lobes) and a data-driven one (diffuse from the data's mean, lobes
+  // scaled to the brightest samples); the better after the first pass is
+  // kept. false: the paper's start only.
+  bool data_driven_start = true;
+};
+
+struct LafortuneFitResult {
+  LafortuneModel model;
+  bool usable = false;
+  std::string message;
+  int alternations = 0;
+  int iterations = 0;          // Levenberg-Marquardt iterations, all passes
+  double rms = 0.0;            // of model - value (cosine-weighted)
+  double relative_rms = 0.0;   // rms / rms(value)
+  double lut_change = 0.0;     // mean relative change of T, last pass
+};
+
+// Never throws for data problems: an empty texel, all-zero values or views
+// without signal give a usable zero/diffuse model or usable = false with a
+// message; nothing is NaN.
+LafortuneFitResult FitLafortune(const TexelSamples& samples,
+                                const LafortuneFitOptions& options);
+
+}  // namespace clothfit

@@ -1,0 +1,271 @@
+#include "fitting/lafortune_mip.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+const char* const kRgb[] = {"R", "G", "B"};
+
+TexelFit FitTexel(const MeasurementTable& table, const ViewIndex& views,
+                  const std::vector<size_t>& rows,
+                  const LafortuneMipOptions& options) {
+  const TexelSamples samples = CollectSamples(table, views, rows, nullptr);
+  TexelFit best;
+  std::vector<int> counts = {options.fit.lobes};
+  if (options.tolerance > 0.0) counts = {0, 1, 2, 3};
+  for (int k : counts) {
+    LafortuneFitOptions o = options.fit;
+    o.lobes = k;
+    const LafortuneFitResult r = FitLafortune(samples, o);
+    TexelFit fit;
+    fit.model = r.model;
+    fit.lobes = k;
+    fit.samples = static_cast<int>(rows.size());
+    fit.usable = r.usable;
+    double rms = 0.0;  // over the rows, not the merged samples
+    LafortuneErrors(r.model, table, rows, &rms, &fit.relative_rms);
+    const bool better = !best.usable || (fit.usable &&
+                                         fit.relative_rms < best.relative_rms);
+    if (k == counts.front() || better) best = fit;
+    if (options.tolerance > 0.0 && fit.usable &&
+        fit.relative_rms <= options.tolerance) {
+      best = fit;  // the smallest K that meets the tolerance
+      break;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
+                                   const LafortuneMipOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!table.has_texels) {
+    throw InputError("a spatially varying fit needs s,t texel columns");
+  }
+  if (table.quantity == Quantity::kTransmittance) {
+    throw InputError("a Lafortune model predicts reflection, not "
+                     "transmittance");
+  }
+  LafortuneMipResult out;
+  const ViewIndex views(table);
+  out.views = views.views();
+  int width = 0, height = 0;
+  for (const TableRow& row : table.rows) {
+    width = std::max(width, row.s + 1);
+    height = std::max(height, row.t + 1);
+  }
+  // Rows of every texel of every level: level 0 from the table, level l+1
+  // from 2 x 2 groups of level l (ROUND_DOWN: an odd last row/column joins
+  // the group before it).
+  std::vector<std::vector<std::vector<size_t>>> rows;  // [level][texel]
+  rows.emplace_back(static_cast<size_t>(width) * height);
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    rows[0][table.rows[i].t * width + table.rows[i].s].push_back(i);
+  }
+  std::vector<std::pair<int, int>> sizes = {{width, height}};
+  while (options.mip && (sizes.back().first > 1 || sizes.back().second > 1)) {
+    const auto [w, h] = sizes.back();
+    const int w2 = std::max(1, w / 2), h2 = std::max(1, h / 2);
+    std::vector<std::vector<size_t>> next(static_cast<size_t>(w2) * h2);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
+        const std::vector<size_t>& from = rows.back()[y * w + x];
+        std::vector<size_t>& to = next[y2 * w2 + x2];
+        to.insert(to.end(), from.begin(), from.end());
+      }
+    }
+    for (std::vector<size_t>& r : next) std::sort(r.begin(), r.end());
+    rows.push_back(std::move(next));
+    sizes.push_back({w2, h2});
+  }
+  // Every texel of every level is one job; results land in fixed slots, so
+  // the thread count does not change them.
+  std::vector<std::pair<size_t, size_t>> jobs;
+  for (size_t l = 0; l < rows.size(); ++l) {
+    LafortuneLevel level;
+    level.width = sizes[l].first;
+    level.height = sizes[l].second;
+    level.texels.resize(rows[l].size());
+    for (size_t t = 0; t < rows[l].size(); ++t) {
+      level.samples += rows[l][t].size();
+      jobs.emplace_back(l, t);
+    }
+    out.levels.push_back(std::move(level));
+  }
+  std::atomic<size_t> next_job{0};
+  std::mutex progress_mutex;
+  int done = 0;
+  std::exception_ptr error;
+  auto worker = [&]() {
+    for (size_t j = next_job++; j < jobs.size(); j = next_job++) {
+      const auto [l, t] = jobs[j];
+      try {
+        out.levels[l].texels[t] = FitTexel(table, views, rows[l][t], options);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        if (!error) error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      ++done;
+      if (options.progress) {
+        options.progress(done, static_cast<int>(jobs.size()));
+      }
+    }
+  };
+  int threads = options.threads > 0
+                    ? options.threads
+                    : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, 256);
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  out.fits = static_cast<int>(jobs.size());
+  out.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+          .count();
+  return out;
+}
+
+ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
+  int lobes = 0;
+  for (const LafortuneLevel& level : result.levels) {
+    for (const TexelFit& t : level.texels) {
+      lobes = std::max(lobes, static_cast<int>(t.model.params.lobes.size()));
+    }
+  }
+  ParamMipmap m;
+  m.channels = {"lobes", "relative_rms"};
+  for (const char* c : kRgb) m.channels.push_back(std::string("diffuse.") + c);
+  for (int k = 0; k < lobes; ++k) {
+    for (const char* p : {"Cx", "Cy", "Cz", "N"}) {
+      for (const char* c : kRgb) {
+        m.channels.push_back("lobe" + std::to_string(k) + "." + p + "." + c);
+      }
+    }
+  }
+  for (size_t v = 0; v < result.views.size(); ++v) {
+    for (const char* c : {"R", "G", "B", "A"}) {
+      m.channels.push_back("lut." + std::to_string(v) + "." + c);
+    }
+  }
+  for (const LafortuneLevel& level : result.levels) {
+    ParamImage image;
+    image.width = level.width;
+    image.height = level.height;
+    image.data.assign(m.channels.size(),
+                      std::vector<float>(level.texels.size(), 0.0f));
+    for (size_t i = 0; i < level.texels.size(); ++i) {
+      const TexelFit& t = level.texels[i];
+      const LafortuneParams& p = t.model.params;
+      size_t ch = 0;
+      image.data[ch++][i] = static_cast<float>(p.lobes.size());
+      image.data[ch++][i] = static_cast<float>(t.relative_rms);
+      for (int c = 0; c < 3; ++c) image.data[ch++][i] = p.diffuse[c];
+      for (int k = 0; k < lobes; ++k) {
+        const bool has = k < static_cast<int>(p.lobes.size());
+        for (int q = 0; q < 4; ++q) {
+          for (int c = 0; c < 3; ++c) {
+            double value = 0.0;
+            if (has) {
+              const LafortuneLobe& lobe = p.lobes[k];
+              const glm::dvec3* fields[] = {&lobe.cx, &lobe.cy, &lobe.cz,
+                                            &lobe.n};
+              value = (*fields[q])[c];
+            }
+            image.data[ch++][i] = static_cast<float>(value);
+          }
+        }
+      }
+      const ViewTable& lut = t.model.lut;
+      for (size_t v = 0; v < result.views.size(); ++v) {
+        const bool has = v < lut.color.size();
+        for (int c = 0; c < 3; ++c) {
+          image.data[ch++][i] = has ? static_cast<float>(lut.color[v][c]) : 1.0f;
+        }
+        image.data[ch++][i] = has ? static_cast<float>(lut.alpha[v]) : 1.0f;
+      }
+    }
+    m.levels.push_back(std::move(image));
+  }
+  nlohmann::ordered_json meta;
+  meta["model"] = "lafortune";
+  meta["lobes"] = lobes;
+  meta["frame"] = "surface frame: normal +z, warp (tangent) +x";
+  meta["quantity"] = "cosine_weighted";
+  meta["lut_interpolation"] = "shepard, angular distance power 3";
+  meta["units"] = {{"diffuse", "unitless reflectance"},
+                   {"Cx/Cy/Cz", "unitless"},
+                   {"N", "unitless exponent"},
+                   {"lut", "unitless factor (RGB) and coverage (A)"},
+                   {"relative_rms", "RMS(model - data) / RMS(data)"}};
+  nlohmann::ordered_json views = nlohmann::ordered_json::array();
+  for (const glm::dvec3& v : result.views) views.push_back({v.x, v.y, v.z});
+  meta["views"] = views;
+  m.metadata_json = meta.dump();
+  return m;
+}
+
+LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level,
+                                    int x, int y) {
+  if (level < 0 || level >= static_cast<int>(mipmap.levels.size())) {
+    throw InputError("mip level " + std::to_string(level) + " out of range");
+  }
+  const ParamImage& image = mipmap.levels[level];
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height) {
+    throw InputError("texel out of range");
+  }
+  const size_t i = static_cast<size_t>(y) * image.width + x;
+  auto channel = [&](const std::string& name) {
+    const auto it =
+        std::find(mipmap.channels.begin(), mipmap.channels.end(), name);
+    if (it == mipmap.channels.end()) {
+      throw InputError("parameter mip map: no channel '" + name + "'");
+    }
+    return static_cast<double>(image.data[it - mipmap.channels.begin()][i]);
+  };
+  const nlohmann::json meta = nlohmann::json::parse(mipmap.metadata_json);
+  LafortuneModel m;
+  for (int c = 0; c < 3; ++c) {
+    m.params.diffuse[c] = channel(std::string("diffuse.") + kRgb[c]);
+  }
+  const int lobes = static_cast<int>(channel("lobes"));
+  for (int k = 0; k < lobes; ++k) {
+    LafortuneLobe lobe;
+    const std::string prefix = "lobe" + std::to_string(k) + ".";
+    for (int c = 0; c < 3; ++c) {
+      lobe.cx[c] = channel(prefix + "Cx." + kRgb[c]);
+      lobe.cy[c] = channel(prefix + "Cy." + kRgb[c]);
+      lobe.cz[c] = channel(prefix + "Cz." + kRgb[c]);
+      lobe.n[c] = channel(prefix + "N." + kRgb[c]);
+    }
+    m.params.lobes.push_back(lobe);
+  }
+  const auto& views = meta.at("views");
+  for (size_t v = 0; v < views.size(); ++v) {
+    m.lut.views.push_back(glm::dvec3(views[v][0].get<double>(),
+                                     views[v][1].get<double>(),
+                                     views[v][2].get<double>()));
+    const std::string prefix = "lut." + std::to_string(v) + ".";
+    m.lut.color.push_back(glm::dvec3(channel(prefix + "R"),
+                                     channel(prefix + "G"),
+                                     channel(prefix + "B")));
+    m.lut.alpha.push_back(channel(prefix + "A"));
+  }
+  return m;
+}
+
+}  // namespace clothfit

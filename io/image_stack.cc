@@ -1,0 +1,606 @@
+#include "io/image_stack.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <new>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegreesPerRadian = 180.0 / kPi;
+// Largest image accepted (pixels), against corrupt headers.
+constexpr int64_t kMaxPixels = int64_t{1} << 28;
+
+constexpr std::array<const char*, 10> kDirectionColumns = {
+    "theta_i", "phi_i", "theta_o", "phi_o", "wi_x",
+    "wi_y",    "wi_z",  "wo_x",    "wo_y",  "wo_z"};
+
+// Distinguishes temporary files of concurrent writers within one process.
+std::atomic<unsigned> temp_counter{0};
+
+[[noreturn]] void Fail(const std::string& file, int line, int column,
+                       const std::string& problem) {
+  throw InputError(FormatLocation(file, line, column) + ": " + problem);
+}
+
+bool IsSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' ||
+         c == '\f';
+}
+
+std::string_view Trim(std::string_view text) {
+  while (!text.empty() && IsSpace(text.front())) text.remove_prefix(1);
+  while (!text.empty() && IsSpace(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+std::string Lower(std::string_view text) {
+  std::string lower(text);
+  for (char& c : lower) {
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  }
+  return lower;
+}
+
+// Quotes (part of) a field for an error message.
+std::string Quote(std::string_view text) {
+  constexpr size_t kMaxQuotedLength = 40;
+  std::string quoted = "'";
+  for (size_t i = 0; i < text.size() && i < kMaxQuotedLength; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') {
+      quoted += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
+      quoted += escaped;
+    }
+  }
+  if (text.size() > kMaxQuotedLength) quoted += "...";
+  quoted += '\'';
+  return quoted;
+}
+
+std::vector<std::string_view> SplitFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      fields.push_back(line.substr(start));
+      return fields;
+    }
+    fields.push_back(line.substr(start, comma - start));
+    start = comma + 1;
+  }
+}
+
+std::string FormatNumber(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+std::string OneLine(std::string_view text) {
+  std::string line(text);
+  for (char& c : line) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return line;
+}
+
+// An OpenImageIO error message (which may span lines) on one line.
+std::string LibraryError(const std::string& message) {
+  std::string line;
+  for (char c : Trim(message)) {
+    if (c == '\r') continue;
+    if (c == '\n') {
+      line += "; ";
+    } else {
+      line += c;
+    }
+  }
+  return line.empty() ? "unknown error" : line;
+}
+
+// One image of the manifest.
+struct StackEntry {
+  glm::dvec3 wi, wo;
+  std::string file;  // as written in the manifest
+  int line = 0;
+};
+
+struct Manifest {
+  MeasurementTable table;  // metadata, quantity, direction columns; no rows
+  std::vector<StackEntry> entries;
+};
+
+// Parses a manifest. The `file` column is taken out here; the rest (metadata,
+// direction columns, numbers, ranges) is checked by the table parser, with
+// the file column standing in as a constant 'weight' column so that line and
+// column numbers in its messages stay those of the manifest.
+Manifest ParseManifest(std::string_view text, const std::string& name) {
+  std::string_view body = text;
+  if (body.substr(0, 3) == "\xEF\xBB\xBF") body.remove_prefix(3);
+
+  std::string substitute;
+  substitute.reserve(body.size() + 16);
+  int line = 0;
+  int header_line = 0;
+  size_t header_fields = 0;
+  size_t file_field = 0;
+  std::map<int, std::string> files;  // line -> file name
+  size_t start = 0;
+  while (start <= body.size()) {
+    size_t end = body.find('\n', start);
+    if (end == std::string_view::npos) end = body.size();
+    std::string_view content = body.substr(start, end - start);
+    start = end + 1;
+    ++line;
+    if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
+    const std::string_view trimmed = Trim(content);
+    if (trimmed.empty() || trimmed.front() == '#') {
+      substitute.append(content);
+      substitute += '\n';
+      continue;
+    }
+    const std::vector<std::string_view> fields = SplitFields(content);
+    if (header_line == 0) {
+      header_line = line;
+      header_fields = fields.size();
+      bool found = false;
+      for (size_t i = 0; i < fields.size(); ++i) {
+        const int column = static_cast<int>(i) + 1;
+        const std::string column_name = Lower(Trim(fields[i]));
+        if (column_name.empty()) Fail(name, line, column, "empty column name");
+        if (column_name == "file") {
+          if (found) {
+            Fail(name, line, column,
+                 "duplicate column 'file' (first at column " +
+                     std::to_string(file_field + 1) + ")");
+          }
+          found = true;
+          file_field = i;
+        } else if (std::find(kDirectionColumns.begin(), kDirectionColumns.end(),
+                             column_name) == kDirectionColumns.end()) {
+          Fail(name, line, column,
+               "unknown column " + Quote(column_name) +
+                   " (expected theta_i,phi_i,theta_o,phi_o or "
+                   "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z, and file)");
+        }
+      }
+      if (!found) Fail(name, line, 0, "missing column 'file'");
+    } else {
+      if (fields.size() != header_fields) {
+        const int column =
+            static_cast<int>(std::min(fields.size(), header_fields)) + 1;
+        Fail(name, line, column,
+             "row has " + std::to_string(fields.size()) +
+                 " fields, header has " + std::to_string(header_fields));
+      }
+      const std::string file(Trim(fields[file_field]));
+      if (file.empty()) {
+        Fail(name, line, static_cast<int>(file_field) + 1,
+             "column 'file': empty file name");
+      }
+      files[line] = file;
+    }
+    // The same line with the file field replaced.
+    for (size_t i = 0; i < fields.size(); ++i) {
+      if (i > 0) substitute += ',';
+      if (i != file_field) {
+        substitute.append(fields[i]);
+      } else {
+        substitute += header_line == line ? "weight" : "0";
+      }
+    }
+    substitute += '\n';
+  }
+  if (header_line == 0) {
+    Fail(name, 0, 0,
+         "no header (expected a line of column names such as "
+         "theta_i,phi_i,theta_o,phi_o,file)");
+  }
+  if (files.empty()) Fail(name, header_line, 0, "manifest lists no images");
+
+  ReadTableOptions options;
+  options.values_optional = true;
+  ReadTableResult parsed = ParseTable(substitute, name, options);
+  Manifest manifest;
+  manifest.table = std::move(parsed.table);
+  for (const TableRow& row : manifest.table.rows) {
+    StackEntry entry;
+    entry.wi = row.wi;
+    entry.wo = row.wo;
+    entry.line = row.source_line;
+    entry.file = files.at(row.source_line);
+    manifest.entries.push_back(std::move(entry));
+  }
+  manifest.table.rows.clear();
+  manifest.table.has_weight = false;
+  return manifest;
+}
+
+// Pixels of one image, as floats.
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  int alpha = -1;             // alpha channel index, -1 when none
+  std::vector<int> colour;    // 1 (grey) or 3 (r, g, b) indices
+  std::vector<float> pixels;  // channels per pixel, row-major
+};
+
+Image ReadImage(const std::string& path, const std::string& manifest,
+                int line) {
+  const std::string listed =
+      " (listed on " + FormatLocation(manifest, line, 0) + ")";
+  std::error_code error;
+  if (!fs::exists(path, error)) {
+    Fail(path, 0, 0,
+         std::string("cannot read image: ") + std::strerror(ENOENT) + listed);
+  }
+  if (fs::is_directory(path, error)) {
+    Fail(path, 0, 0,
+         std::string("cannot read image: ") + std::strerror(EISDIR) + listed);
+  }
+  OIIO::ImageSpec config;
+  // Values as stored: PNG/TIFF colours are not multiplied by alpha.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    Fail(path, 0, 0,
+         "cannot read image: " + LibraryError(OIIO::geterror()) + listed);
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  if (image.width < 1 || image.height < 1 || spec.depth > 1 ||
+      int64_t{image.width} * image.height > kMaxPixels) {
+    Fail(path, 0, 0,
+         "unsupported image size " + std::to_string(image.width) + " x " +
+             std::to_string(image.height) + " x " + std::to_string(spec.depth) +
+             listed);
+  }
+  if (image.channels < 1 || image.channels > 4) {
+    Fail(path, 0, 0,
+         "image has " + std::to_string(image.channels) +
+             " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
+             "(rgba)" +
+             listed);
+  }
+  if (image.channels == 2 || image.channels == 4) {
+    image.alpha = spec.alpha_channel >= 0 && spec.alpha_channel < image.channels
+                      ? spec.alpha_channel
+                      : image.channels - 1;
+  }
+  for (int c = 0; c < image.channels; ++c) {
+    if (c != image.alpha) image.colour.push_back(c);
+  }
+  image.pixels.resize(static_cast<size_t>(image.width) * image.height *
+                      image.channels);
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
+                      image.pixels.data())) {
+    Fail(path, 0, 0,
+         "cannot read image: " + LibraryError(in->geterror()) + listed);
+  }
+  in->close();
+  return image;
+}
+
+bool UsesFloat(const std::string& extension) {
+  const std::string ext = Lower(extension);
+  return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm" ||
+         ext == ".hdr";
+}
+
+void WriteImage(const std::string& path, int width, int height,
+                int colour_channels, bool with_alpha, bool float_pixels,
+                const std::vector<float>& pixels) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  if (!out) {
+    Fail(path, 0, 0, "cannot write image: " + LibraryError(OIIO::geterror()));
+  }
+  const int channels = colour_channels + (with_alpha ? 1 : 0);
+  OIIO::ImageSpec spec(
+      width, height, channels,
+      float_pixels ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (colour_channels == 1) {
+    spec.channelnames = {"Y"};
+  } else {
+    spec.channelnames = {"R", "G", "B"};
+  }
+  spec.alpha_channel = -1;
+  if (with_alpha) {
+    spec.channelnames.push_back("A");
+    spec.alpha_channel = colour_channels;
+  }
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+
+  // A temporary name beside the target; the format was chosen above from
+  // the target's extension.
+  std::string temp;
+  for (int attempt = 0; attempt < 100 && temp.empty(); ++attempt) {
+    const std::string candidate = path + ".tmp-" + std::to_string(::getpid()) +
+                                  "-" +
+                                  std::to_string(temp_counter.fetch_add(1));
+    const int fd = ::open(candidate.c_str(),
+                          O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      temp = candidate;
+    } else if (errno != EEXIST) {
+      Fail(path, 0, 0, std::string("cannot write: ") + std::strerror(errno));
+    }
+  }
+  if (temp.empty()) {
+    Fail(path, 0, 0, std::string("cannot write: ") + std::strerror(EEXIST));
+  }
+  std::string problem;
+  if (!out->open(temp, spec) ||
+      !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+      !out->close()) {
+    problem = "cannot write image: " + LibraryError(out->geterror());
+  } else if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    problem = std::string("cannot write: ") + std::strerror(errno);
+  }
+  if (!problem.empty()) {
+    out.reset();
+    ::unlink(temp.c_str());
+    Fail(path, 0, 0, problem);
+  }
+}
+
+using DirectionKey = std::array<double, 6>;
+
+DirectionKey KeyOf(const TableRow& row) {
+  return {row.wi.x, row.wi.y, row.wi.z, row.wo.x, row.wo.y, row.wo.z};
+}
+
+std::string PairLabel(size_t pair, const TableRow& row) {
+  double theta_i = 0.0, phi_i = 0.0, theta_o = 0.0, phi_o = 0.0;
+  AnglesFromDirection(row.wi, &theta_i, &phi_i);
+  AnglesFromDirection(row.wo, &theta_o, &phi_o);
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer),
+                "direction pair %zu (theta_i %.6g, phi_i %.6g, theta_o %.6g, "
+                "phi_o %.6g degrees)",
+                pair, theta_i * kDegreesPerRadian, phi_i * kDegreesPerRadian,
+                theta_o * kDegreesPerRadian, phi_o * kDegreesPerRadian);
+  return buffer;
+}
+
+}  // namespace
+
+MeasurementTable ReadImageStack(const std::string& manifest_path,
+                                const ReadStackOptions& options) {
+  if (options.stride < 1) {
+    Fail(manifest_path, 0, 0,
+         "stride must be at least 1, got " + std::to_string(options.stride));
+  }
+  Manifest manifest =
+      ParseManifest(ReadFileToString(manifest_path), manifest_path);
+  MeasurementTable table = std::move(manifest.table);
+  table.has_texels = true;
+  table.has_sigma = false;
+  table.has_weight = false;
+  table.has_alpha = false;
+  table.channels = 1;
+
+  const fs::path folder = fs::path(manifest_path).parent_path();
+  const int stride = options.stride;
+  int width = 0;
+  int height = 0;
+  std::string first_image;
+  for (const StackEntry& entry : manifest.entries) {
+    const fs::path file(entry.file);
+    const std::string path =
+        (file.is_absolute() || folder.empty() ? file : folder / file).string();
+    Image image;
+    try {
+      image = ReadImage(path, manifest_path, entry.line);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::bad_alloc&) {
+      Fail(path, 0, 0, "out of memory reading the image");
+    } catch (const std::exception& error) {
+      Fail(path, 0, 0, std::string("cannot read image: ") + error.what());
+    }
+    if (first_image.empty()) {
+      width = image.width;
+      height = image.height;
+      first_image = path;
+    } else if (image.width != width || image.height != height) {
+      Fail(path, 0, 0,
+           "image is " + std::to_string(image.width) + " x " +
+               std::to_string(image.height) + ", but " + first_image + " is " +
+               std::to_string(width) + " x " + std::to_string(height) +
+               " (listed on " + FormatLocation(manifest_path, entry.line, 0) +
+               ")");
+    }
+    if (image.colour.size() == 3) table.channels = 3;
+    if (image.alpha >= 0) table.has_alpha = true;
+
+    for (int y = 0; y < height; y += stride) {
+      for (int x = 0; x < width; x += stride) {
+        const float* pixel =
+            image.pixels.data() +
+            (static_cast<size_t>(y) * width + x) * image.channels;
+        TableRow row;
+        row.wi = entry.wi;
+        row.wo = entry.wo;
+        if (image.colour.size() == 1) {
+          row.value = glm::dvec3(pixel[image.colour[0]]);
+        } else {
+          row.value = glm::dvec3(pixel[image.colour[0]], pixel[image.colour[1]],
+                                 pixel[image.colour[2]]);
+        }
+        if (image.alpha >= 0) row.alpha = pixel[image.alpha];
+        row.s = x;
+        row.t = y;
+        row.source_line = entry.line;
+        table.rows.push_back(row);
+      }
+    }
+  }
+  return table;
+}
+
+void WriteImageStack(const MeasurementTable& table,
+                     const std::string& manifest_path,
+                     const std::string& extension, bool with_alpha) {
+  const std::string& name = manifest_path;
+  if (table.rows.empty()) Fail(name, 0, 0, "cannot write an empty stack");
+  const std::string ext =
+      extension.empty() || extension[0] == '.' ? extension : "." + extension;
+  if (ext.size() < 2) Fail(name, 0, 0, "no image file extension given");
+
+  // Direction pairs in order of first appearance, and the grid size.
+  std::map<DirectionKey, size_t> pair_of;
+  std::vector<size_t> first_row;  // per pair
+  std::vector<size_t> row_pair(table.rows.size());
+  int width = 0;
+  int height = 0;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    if (row.s < 0 || row.t < 0) {
+      Fail(name, 0, 0,
+           "row " + std::to_string(i + 1) +
+               " has no texel indices (s, t); an image stack needs them");
+    }
+    const auto [it, added] = pair_of.emplace(KeyOf(row), first_row.size());
+    if (added) first_row.push_back(i);
+    row_pair[i] = it->second;
+    width = std::max(width, row.s + 1);
+    height = std::max(height, row.t + 1);
+  }
+  const size_t pairs = first_row.size();
+  const uint64_t texels = static_cast<uint64_t>(width) * height;
+  if (texels > static_cast<uint64_t>(kMaxPixels)) {
+    Fail(name, 0, 0,
+         "image size " + std::to_string(width) + " x " +
+             std::to_string(height) + " is too large");
+  }
+
+  // Which row fills each texel of each pair.
+  const size_t kNone = static_cast<size_t>(-1);
+  std::vector<std::vector<size_t>> grid(pairs);
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    const size_t pair = row_pair[i];
+    std::vector<size_t>& cells = grid[pair];
+    if (cells.empty()) cells.assign(texels, kNone);
+    size_t& cell = cells[static_cast<size_t>(row.t) * width + row.s];
+    if (cell != kNone) {
+      Fail(name, 0, 0,
+           PairLabel(pair, row) + ": texel (" + std::to_string(row.s) + ", " +
+               std::to_string(row.t) + ") given twice (rows " +
+               std::to_string(cell + 1) + " and " + std::to_string(i + 1) +
+               ")");
+    }
+    cell = i;
+  }
+  for (size_t pair = 0; pair < pairs; ++pair) {
+    for (size_t cell = 0; cell < texels; ++cell) {
+      if (grid[pair][cell] == kNone) {
+        Fail(name, 0, 0,
+             PairLabel(pair, table.rows[first_row[pair]]) + ": texel (" +
+                 std::to_string(cell % width) + ", " +
+                 std::to_string(cell / width) + ") is missing; every pair " +
+                 "must cover the full " + std::to_string(width) + " x " +
+                 std::to_string(height) + " grid");
+      }
+    }
+  }
+
+  const fs::path manifest(manifest_path);
+  const std::string stem = manifest.stem().string();
+  if (stem.empty() || stem.find_first_of(",\n\r") != std::string::npos) {
+    Fail(name, 0, 0,
+         "the manifest's name must be non-empty and hold no ',' or line "
+         "breaks (it names the images)");
+  }
+  const fs::path folder = manifest.parent_path();
+  const bool float_pixels = UsesFloat(ext);
+  const int colour_channels = table.channels == 1 ? 1 : 3;
+  const int channels = colour_channels + (with_alpha ? 1 : 0);
+
+  std::string text = "# clothfit-stack 1\n";
+  text += std::string("# quantity: ") + QuantityName(table.quantity) + "\n";
+  text += "# units: degrees\n";
+  for (const auto& [key, value] : table.metadata) {
+    std::string key_name = Lower(Trim(OneLine(key)));
+    std::replace(key_name.begin(), key_name.end(), ':', '_');
+    if (key_name.empty() || key_name == "quantity" || key_name == "units" ||
+        key_name == "clothfit-table" || key_name == "clothfit-stack") {
+      continue;
+    }
+    text += "# " + key_name + ": " + OneLine(value) + "\n";
+  }
+  text += "theta_i,phi_i,theta_o,phi_o,file\n";
+
+  std::vector<float> pixels(texels * channels);
+  for (size_t pair = 0; pair < pairs; ++pair) {
+    char suffix[32];
+    std::snprintf(suffix, sizeof(suffix), "_%04zu", pair);
+    const std::string file = stem + suffix + ext;
+    const std::string path =
+        (folder.empty() ? fs::path(file) : folder / file).string();
+    for (size_t cell = 0; cell < texels; ++cell) {
+      const TableRow& row = table.rows[grid[pair][cell]];
+      float* pixel = pixels.data() + cell * channels;
+      std::array<double, 4> values = {row.value.x, row.value.y, row.value.z,
+                                      row.alpha};
+      if (colour_channels == 1) values[1] = row.alpha;
+      for (int c = 0; c < channels; ++c) {
+        double v = values[c];
+        if (!float_pixels) v = std::isnan(v) ? 0.0 : std::clamp(v, 0.0, 1.0);
+        pixel[c] = static_cast<float>(v);
+      }
+    }
+    try {
+      WriteImage(path, width, height, colour_channels, with_alpha, float_pixels,
+                 pixels);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& error) {
+      Fail(path, 0, 0, std::string("cannot write image: ") + error.what());
+    }
+
+    const TableRow& row = table.rows[first_row[pair]];
+    double theta_i = 0.0, phi_i = 0.0, theta_o = 0.0, phi_o = 0.0;
+    AnglesFromDirection(row.wi, &theta_i, &phi_i);
+    AnglesFromDirection(row.wo, &theta_o, &phi_o);
+    text += FormatNumber(theta_i * kDegreesPerRadian) + "," +
+            FormatNumber(phi_i * kDegreesPerRadian) + "," +
+            FormatNumber(theta_o * kDegreesPerRadian) + "," +
+            FormatNumber(phi_o * kDegreesPerRadian) + "," + file + "\n";
+  }
+  WriteFileAtomically(manifest_path, text);
+}
+
+}  // namespace clothfit

@@ -1,0 +1,43 @@
+// Image stacks: one image per (light, view) direction pair, listed in a CSV
+// manifest, read with OpenImageIO (EXR, PNG, TIFF, ...). Each pixel (s, t)
+// of image k becomes one table row (directions of k, value = the pixel's
+// r,g,b, or its single channel), so a stack becomes a spatially varying
+// measurement table (s = column, t = row of the pixel).
+//
+// Manifest (SPEC §2 conventions: '#' metadata lines, then a header; any
+// column order, case-insensitive names; angles in degrees unless
+// "# units: radians"; image paths relative to the manifest's folder):
+//   # clothfit-stack 1
+//   # quantity: cosine_weighted
+//   theta_i,phi_i,theta_o,phi_o,file
+//   30,0,45,180,img_000.exr
+// The image's alpha channel, when present, is the per-view coverage: it is
+// stored in TableRow::alpha (1 without alpha).
+#pragma once
+
+#include <string>
+
+#include "io/table.h"
+
+namespace clothfit {
+
+struct ReadStackOptions {
+  // Keep only every `stride`-th pixel in x and y (1 = all).
+  int stride = 1;
+};
+
+// Throws InputError naming the manifest (line, column) or the image file
+// and the problem: missing column, bad number, missing/unreadable/truncated
+// image, images of different sizes, empty manifest.
+MeasurementTable ReadImageStack(const std::string& manifest_path,
+                                const ReadStackOptions& options = {});
+
+// Writes a stack from a spatially varying table whose rows cover a full
+// width x height grid of (s, t) for each distinct (wi, wo) pair: one
+// image per pair (format from `extension`, e.g. ".exr" or ".png"; alpha
+// written when `with_alpha`), and the manifest. Atomic per file.
+void WriteImageStack(const MeasurementTable& table,
+                     const std::string& manifest_path,
+                     const std::string& extension, bool with_alpha);
+
+}  // namespace clothfit

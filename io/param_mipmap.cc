@@ -1,0 +1,383 @@
+#include "io/param_mipmap.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfStdIO.h>
+#include <ImfTileDescription.h>
+#include <ImfTileDescriptionAttribute.h>
+#include <ImfTiledInputFile.h>
+#include <ImfTiledOutputFile.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+using nlohmann::json;
+
+constexpr char kFormat[] = "clothfit-param-mipmap 1";
+constexpr int kTileSize = 32;
+// OpenEXR's limit on channel names (with the long-names flag).
+constexpr size_t kMaxChannelNameLength = 255;
+// Largest base size accepted (per side), and the largest number of floats in
+// all levels together (8 GiB); larger indexes are rejected as corrupt
+// before anything is allocated.
+constexpr int64_t kMaxSide = int64_t{1} << 24;
+constexpr int64_t kMaxFloats = int64_t{1} << 31;
+
+// Distinguishes temporary files of concurrent writers within one process.
+std::atomic<unsigned> temp_counter{0};
+
+[[noreturn]] void Fail(const std::string& path, const std::string& problem) {
+  throw InputError(path + ": " + problem);
+}
+
+int LevelSize(int base, int level) { return std::max(1, base >> level); }
+
+// Number of MIPMAP_LEVELS / ROUND_DOWN levels of a width x height base.
+int LevelCount(int width, int height) {
+  int levels = 1;
+  for (int side = std::max(width, height); side > 1; side >>= 1) ++levels;
+  return levels;
+}
+
+std::string BaseName(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// Checks sizes and names; `path` is used in messages.
+void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
+  if (mipmap.channels.empty()) Fail(path, "param mip map has no channels");
+  std::set<std::string> names;
+  for (const std::string& name : mipmap.channels) {
+    if (name.empty()) Fail(path, "empty channel name");
+    if (name.size() > kMaxChannelNameLength ||
+        name.find('\0') != std::string::npos) {
+      Fail(path, "channel name '" + name.substr(0, 40) +
+                     "...' is longer than 255 bytes or holds a NUL byte");
+    }
+    if (!names.insert(name).second) {
+      Fail(path, "duplicate channel name '" + name + "'");
+    }
+  }
+  if (mipmap.levels.empty()) Fail(path, "param mip map has no levels");
+  const int width = mipmap.levels[0].width;
+  const int height = mipmap.levels[0].height;
+  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) {
+    Fail(path, "bad base size " + std::to_string(width) + " x " +
+                   std::to_string(height));
+  }
+  const int expected_levels = LevelCount(width, height);
+  if (static_cast<int>(mipmap.levels.size()) != expected_levels) {
+    Fail(path, "a " + std::to_string(width) + " x " + std::to_string(height) +
+                   " base needs " + std::to_string(expected_levels) +
+                   " levels (down to 1 x 1), got " +
+                   std::to_string(mipmap.levels.size()));
+  }
+  for (int level = 0; level < expected_levels; ++level) {
+    const ParamImage& image = mipmap.levels[level];
+    const int level_width = LevelSize(width, level);
+    const int level_height = LevelSize(height, level);
+    const std::string label = "level " + std::to_string(level);
+    if (image.width != level_width || image.height != level_height) {
+      Fail(path, label + " is " + std::to_string(image.width) + " x " +
+                     std::to_string(image.height) + ", expected " +
+                     std::to_string(level_width) + " x " +
+                     std::to_string(level_height));
+    }
+    if (image.data.size() != mipmap.channels.size()) {
+      Fail(path, label + " has " + std::to_string(image.data.size()) +
+                     " channels, expected " +
+                     std::to_string(mipmap.channels.size()));
+    }
+    const size_t texels = static_cast<size_t>(level_width) * level_height;
+    for (size_t c = 0; c < image.data.size(); ++c) {
+      if (image.data[c].size() != texels) {
+        Fail(path, label + " channel '" + mipmap.channels[c] + "' has " +
+                       std::to_string(image.data[c].size()) +
+                       " values, expected " + std::to_string(texels));
+      }
+    }
+  }
+}
+
+// A frame buffer with one FLOAT slice per channel over `image`, whose pixel
+// (0, 0) sits at (x0, y0) of the file's data window.
+Imf::FrameBuffer MakeFrameBuffer(const std::vector<std::string>& channels,
+                                 const ParamImage& image, int x0, int y0) {
+  Imf::FrameBuffer frame_buffer;
+  const size_t x_stride = sizeof(float);
+  const size_t y_stride = sizeof(float) * static_cast<size_t>(image.width);
+  const ptrdiff_t origin =
+      static_cast<ptrdiff_t>(x0) * static_cast<ptrdiff_t>(x_stride) +
+      static_cast<ptrdiff_t>(y0) * static_cast<ptrdiff_t>(y_stride);
+  for (size_t c = 0; c < channels.size(); ++c) {
+    // OpenEXR addresses pixel (x, y) at base + x * xStride + y * yStride.
+    char* base =
+        reinterpret_cast<char*>(const_cast<float*>(image.data[c].data())) -
+        origin;
+    frame_buffer.insert(channels[c],
+                        Imf::Slice(Imf::FLOAT, base, x_stride, y_stride));
+  }
+  return frame_buffer;
+}
+
+// Creates an empty, unused file beside `path` and returns its name.
+std::string MakeTempFile(const std::string& path) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" +
+                             std::to_string(temp_counter.fetch_add(1));
+    const int fd =
+        ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      return temp;
+    }
+    if (errno != EEXIST) {
+      Fail(path, std::string("cannot write: ") + std::strerror(errno));
+    }
+  }
+  Fail(path, std::string("cannot write: ") + std::strerror(EEXIST));
+}
+
+void WriteExr(const ParamMipmap& mipmap, const std::string& path) {
+  const int width = mipmap.levels[0].width;
+  const int height = mipmap.levels[0].height;
+  const std::string temp = MakeTempFile(path);
+  try {
+    Imf::Header header(width, height);
+    header.setTileDescription(Imf::TileDescription(
+        kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const std::string& name : mipmap.channels) {
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    }
+    std::ofstream stream(temp, std::ios::binary | std::ios::trunc);
+    if (!stream) Fail(path, "cannot write: cannot open " + temp);
+    {
+      Imf::StdOFStream exr_stream(stream, temp.c_str());
+      Imf::TiledOutputFile out(exr_stream, header);
+      for (int level = 0; level < out.numLevels(); ++level) {
+        out.setFrameBuffer(
+            MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
+        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1,
+                       level);
+      }
+      // The destructor writes the tile offset table.
+    }
+    stream.close();
+    if (!stream) Fail(path, "cannot write: error while writing " + temp);
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+      Fail(path, std::string("cannot write: ") + std::strerror(errno));
+    }
+  } catch (const InputError&) {
+    ::unlink(temp.c_str());
+    throw;
+  } catch (const std::exception& error) {
+    ::unlink(temp.c_str());
+    Fail(path, std::string("cannot write OpenEXR file: ") + error.what());
+  }
+}
+
+// Reads a non-negative integer member of the index.
+int IndexInt(const json& index, const char* key, const std::string& name) {
+  const auto it = index.find(key);
+  if (it == index.end()) Fail(name, std::string("missing key '") + key + "'");
+  if (!it->is_number_integer() || it->get<int64_t>() < 0 ||
+      it->get<int64_t>() > kMaxSide) {
+    Fail(name, std::string("key '") + key + "': expected an integer in [0, " +
+                   std::to_string(kMaxSide) + "], got " + it->dump());
+  }
+  return static_cast<int>(it->get<int64_t>());
+}
+
+struct Index {
+  int width = 0, height = 0, levels = 0;
+  std::vector<std::string> channels;
+  std::string metadata_json = "{}";
+};
+
+Index ReadIndex(const std::string& name) {
+  const std::string text = ReadFileToString(name);
+  json index;
+  try {
+    index = json::parse(text);
+  } catch (const json::exception& error) {
+    Fail(name, std::string("invalid JSON: ") + error.what());
+  }
+  if (!index.is_object()) Fail(name, "expected a JSON object");
+  const auto format = index.find("format");
+  if (format == index.end() || !format->is_string() ||
+      format->get<std::string>() != kFormat) {
+    Fail(name, std::string("key 'format': expected \"") + kFormat + "\"");
+  }
+  Index result;
+  result.width = IndexInt(index, "width", name);
+  result.height = IndexInt(index, "height", name);
+  result.levels = IndexInt(index, "levels", name);
+  if (result.width < 1 || result.height < 1) {
+    Fail(name, "bad size " + std::to_string(result.width) + " x " +
+                   std::to_string(result.height));
+  }
+  const int expected_levels = LevelCount(result.width, result.height);
+  if (result.levels != expected_levels) {
+    Fail(name, "key 'levels': a " + std::to_string(result.width) + " x " +
+                   std::to_string(result.height) + " base has " +
+                   std::to_string(expected_levels) + " levels, index says " +
+                   std::to_string(result.levels));
+  }
+  const auto channels = index.find("channels");
+  if (channels == index.end() || !channels->is_array() || channels->empty()) {
+    Fail(name, "key 'channels': expected a non-empty array of names");
+  }
+  std::set<std::string> seen;
+  for (const json& channel : *channels) {
+    if (!channel.is_string() || channel.get<std::string>().empty()) {
+      Fail(name,
+           "key 'channels': expected non-empty names, got " + channel.dump());
+    }
+    if (!seen.insert(channel.get<std::string>()).second) {
+      Fail(name, "key 'channels': duplicate name " + channel.dump());
+    }
+    result.channels.push_back(channel.get<std::string>());
+  }
+  const auto metadata = index.find("metadata");
+  if (metadata != index.end()) {
+    if (!metadata->is_object()) {
+      Fail(name, "key 'metadata': expected a JSON object");
+    }
+    result.metadata_json = metadata->dump();
+  }
+  int64_t floats = 0;
+  for (int level = 0; level < result.levels; ++level) {
+    floats += static_cast<int64_t>(LevelSize(result.width, level)) *
+              LevelSize(result.height, level);
+  }
+  if (floats * static_cast<int64_t>(result.channels.size()) > kMaxFloats) {
+    Fail(name, "too large: " + std::to_string(result.channels.size()) +
+                   " channels of " + std::to_string(result.width) + " x " +
+                   std::to_string(result.height));
+  }
+  return result;
+}
+
+void ReadExr(const std::string& path, const Index& index, ParamMipmap* mipmap) {
+  Imf::TiledInputFile in(path.c_str());
+  const Imf::Header& header = in.header();
+  if (!header.hasTileDescription() || in.levelMode() != Imf::MIPMAP_LEVELS ||
+      in.levelRoundingMode() != Imf::ROUND_DOWN) {
+    Fail(path, "not a mip-mapped OpenEXR file (MIPMAP_LEVELS, ROUND_DOWN)");
+  }
+  const Imath::Box2i& window = header.dataWindow();
+  const int64_t width = int64_t{window.max.x} - window.min.x + 1;
+  const int64_t height = int64_t{window.max.y} - window.min.y + 1;
+  if (width != index.width || height != index.height) {
+    Fail(path, "image is " + std::to_string(width) + " x " +
+                   std::to_string(height) + ", index says " +
+                   std::to_string(index.width) + " x " +
+                   std::to_string(index.height));
+  }
+  if (in.numLevels() != index.levels) {
+    Fail(path, "file has " + std::to_string(in.numLevels()) +
+                   " levels, index says " + std::to_string(index.levels));
+  }
+  for (const std::string& name : index.channels) {
+    if (header.channels().findChannel(name) == nullptr) {
+      Fail(path, "channel '" + name + "' named in the index is missing");
+    }
+  }
+  if (!in.isComplete()) Fail(path, "truncated or incomplete OpenEXR file");
+
+  mipmap->levels.resize(index.levels);
+  for (int level = 0; level < index.levels; ++level) {
+    ParamImage& image = mipmap->levels[level];
+    image.width = in.levelWidth(level);
+    image.height = in.levelHeight(level);
+    if (image.width != LevelSize(index.width, level) ||
+        image.height != LevelSize(index.height, level)) {
+      Fail(path, "level " + std::to_string(level) + " has an unexpected size");
+    }
+    image.data.assign(
+        index.channels.size(),
+        std::vector<float>(static_cast<size_t>(image.width) * image.height));
+    const Imath::Box2i level_window = in.dataWindowForLevel(level);
+    in.setFrameBuffer(MakeFrameBuffer(index.channels, image, level_window.min.x,
+                                      level_window.min.y));
+    in.readTiles(0, in.numXTiles(level) - 1, 0, in.numYTiles(level) - 1, level);
+  }
+}
+
+}  // namespace
+
+void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
+  if (path.empty()) Fail(path, "cannot write: empty path");
+  ValidateMipmap(mipmap, path);
+  json metadata;
+  try {
+    metadata =
+        json::parse(mipmap.metadata_json.empty() ? "{}" : mipmap.metadata_json);
+  } catch (const json::exception& error) {
+    Fail(path, std::string("metadata is not valid JSON: ") + error.what());
+  }
+  if (!metadata.is_object()) Fail(path, "metadata is not a JSON object");
+
+  const int width = mipmap.levels[0].width;
+  const int height = mipmap.levels[0].height;
+  json index = {{"format", kFormat},
+                {"exr", BaseName(path)},
+                {"width", width},
+                {"height", height},
+                {"levels", static_cast<int>(mipmap.levels.size())},
+                {"channels", mipmap.channels},
+                {"metadata", std::move(metadata)}};
+  std::string index_text;
+  try {
+    index_text = index.dump(2) + "\n";
+  } catch (const json::exception& error) {
+    // Channel names or metadata that are not valid UTF-8.
+    Fail(path, std::string("cannot write index: ") + error.what());
+  }
+
+  WriteExr(mipmap, path);
+  WriteFileAtomically(path + ".json", index_text);
+}
+
+ParamMipmap ReadParamMipmap(const std::string& path) {
+  const Index index = ReadIndex(path + ".json");
+  ParamMipmap mipmap;
+  mipmap.channels = index.channels;
+  mipmap.metadata_json = index.metadata_json;
+  try {
+    ReadExr(path, index, &mipmap);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    Fail(path, "out of memory reading the OpenEXR file");
+  } catch (const std::exception& error) {
+    // Iex::BaseExc derives from std::exception.
+    Fail(path, std::string("cannot read OpenEXR file: ") + error.what());
+  }
+  return mipmap;
+}
+
+}  // namespace clothfit

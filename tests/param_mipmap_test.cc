@@ -1,0 +1,306 @@
+#include "io/param_mipmap.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh, empty directory for one test under CLOTHFIT_TEST_TMP.
+fs::path TestDir() {
+  const testing::TestInfo* info =
+      testing::UnitTest::GetInstance()->current_test_info();
+  const fs::path dir = fs::path(CLOTHFIT_TEST_TMP) /
+                       (std::string("param_mipmap_test_") + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A mip map of random values with `channels` channels over a width x height
+// base, down to 1 x 1.
+ParamMipmap RandomMipmap(int width, int height, int channels,
+                         unsigned seed = 1) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> uniform(-1000.0f, 1000.0f);
+  ParamMipmap mipmap;
+  for (int c = 0; c < channels; ++c) {
+    mipmap.channels.push_back("lut." + std::to_string(c / 3) + "." +
+                              "RGB"[c % 3]);
+  }
+  while (true) {
+    ParamImage image;
+    image.width = width;
+    image.height = height;
+    image.data.resize(channels);
+    for (std::vector<float>& values : image.data) {
+      values.resize(static_cast<size_t>(width) * height);
+      for (float& value : values) value = uniform(random);
+    }
+    mipmap.levels.push_back(std::move(image));
+    if (width == 1 && height == 1) break;
+    width = std::max(1, width / 2);
+    height = std::max(1, height / 2);
+  }
+  return mipmap;
+}
+
+// Runs `action` and returns the InputError message ("" if none).
+template <typename Action>
+std::string ErrorOf(Action action) {
+  try {
+    action();
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+void ExpectHas(const std::string& message,
+               std::initializer_list<std::string> pieces) {
+  ASSERT_FALSE(message.empty()) << "no error";
+  for (const std::string& piece : pieces) {
+    EXPECT_NE(message.find(piece), std::string::npos)
+        << "'" << piece << "' not in: " << message;
+  }
+}
+
+void ExpectSame(const ParamMipmap& a, const ParamMipmap& b) {
+  EXPECT_EQ(a.channels, b.channels);
+  ASSERT_EQ(a.levels.size(), b.levels.size());
+  for (size_t l = 0; l < a.levels.size(); ++l) {
+    EXPECT_EQ(a.levels[l].width, b.levels[l].width);
+    EXPECT_EQ(a.levels[l].height, b.levels[l].height);
+    ASSERT_EQ(a.levels[l].data.size(), b.levels[l].data.size());
+    for (size_t c = 0; c < a.levels[l].data.size(); ++c) {
+      // Bit-exact floats.
+      ASSERT_EQ(a.levels[l].data[c], b.levels[l].data[c])
+          << "level " << l << " channel " << a.channels[c];
+    }
+  }
+}
+
+int CountEntries(const fs::path& dir) {
+  int entries = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    (void)entry;
+    ++entries;
+  }
+  return entries;
+}
+
+TEST(ParamMipmapTest, RoundTripManyChannels) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "params.exr").string();
+  ParamMipmap mipmap = RandomMipmap(8, 4, 300);
+  ASSERT_EQ(mipmap.levels.size(), 4u);  // 8x4, 4x2, 2x1, 1x1
+  mipmap.metadata_json = R"({"views": [[0.5, 1.0], [2, 3]], "units": "sr^-1"})";
+  WriteParamMipmap(mipmap, path);
+  EXPECT_TRUE(fs::exists(path));
+  EXPECT_TRUE(fs::exists(path + ".json"));
+  EXPECT_EQ(CountEntries(dir), 2);  // No temporary files left.
+
+  const ParamMipmap back = ReadParamMipmap(path);
+  ExpectSame(back, mipmap);
+  EXPECT_EQ(back.metadata_json,
+            R"({"units":"sr^-1","views":[[0.5,1.0],[2,3]]})");
+
+  const std::string index = ReadFileToString(path + ".json");
+  for (const char* piece :
+       {"\"format\": \"clothfit-param-mipmap 1\"", "\"exr\": \"params.exr\"",
+        "\"width\": 8", "\"height\": 4", "\"levels\": 4", "\"lut.99.B\""}) {
+    EXPECT_NE(index.find(piece), std::string::npos) << piece << "\n" << index;
+  }
+}
+
+TEST(ParamMipmapTest, RoundTripOddAndLargerSizes) {
+  const fs::path dir = TestDir();
+  for (const auto& [width, height] : {std::pair{1, 1}, std::pair{1, 7},
+                                      std::pair{33, 5}, std::pair{70, 65}}) {
+    const std::string path = (dir / ("p" + std::to_string(width) + "x" +
+                                     std::to_string(height) + ".exr"))
+                                 .string();
+    const ParamMipmap mipmap = RandomMipmap(width, height, 5, width * height);
+    WriteParamMipmap(mipmap, path);
+    const ParamMipmap back = ReadParamMipmap(path);
+    ExpectSame(back, mipmap);
+    EXPECT_EQ(back.metadata_json, "{}");
+  }
+  // Writing again replaces the files.
+  const std::string path = (dir / "p1x1.exr").string();
+  const ParamMipmap other = RandomMipmap(2, 2, 3, 99);
+  WriteParamMipmap(other, path);
+  ExpectSame(ReadParamMipmap(path), other);
+}
+
+TEST(ParamMipmapTest, RejectsInconsistentMipmaps) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "bad.exr").string();
+
+  ParamMipmap missing_level = RandomMipmap(8, 4, 2);
+  missing_level.levels.pop_back();
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(missing_level, path); }),
+            {path, "needs 4 levels", "got 3"});
+
+  ParamMipmap wrong_size = RandomMipmap(8, 4, 2);
+  wrong_size.levels[2].width = 1;
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(wrong_size, path); }),
+            {path, "level 2 is 1 x 1, expected 2 x 1"});
+
+  ParamMipmap wrong_channels = RandomMipmap(8, 4, 2);
+  wrong_channels.levels[1].data.pop_back();
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(wrong_channels, path); }),
+            {path, "level 1 has 1 channels, expected 2"});
+
+  ParamMipmap wrong_data = RandomMipmap(8, 4, 2);
+  wrong_data.levels[0].data[1].push_back(0.0f);
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(wrong_data, path); }),
+            {path, "level 0", "has 33 values, expected 32"});
+
+  ParamMipmap duplicate = RandomMipmap(2, 2, 2);
+  duplicate.channels[1] = duplicate.channels[0];
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(duplicate, path); }),
+            {path, "duplicate channel"});
+
+  ParamMipmap no_channels;
+  no_channels.levels.resize(1);
+  no_channels.levels[0].width = no_channels.levels[0].height = 1;
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(no_channels, path); }),
+            {path, "no channels"});
+
+  ParamMipmap bad_metadata = RandomMipmap(2, 2, 1);
+  bad_metadata.metadata_json = "{oops";
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(bad_metadata, path); }),
+            {path, "metadata"});
+  bad_metadata.metadata_json = "[1, 2]";
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(bad_metadata, path); }),
+            {path, "metadata is not a JSON object"});
+
+  EXPECT_EQ(CountEntries(dir), 0);  // Nothing written.
+
+  ExpectHas(ErrorOf([&] {
+              WriteParamMipmap(RandomMipmap(2, 2, 1),
+                               (dir / "no_dir" / "x.exr").string());
+            }),
+            {"no_dir/x.exr", "cannot write"});
+}
+
+TEST(ParamMipmapTest, TruncatedExr) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "cut.exr").string();
+  WriteParamMipmap(RandomMipmap(64, 64, 20), path);
+  const std::string full = ReadFileToString(path);
+  for (size_t keep :
+       {full.size() / 2, full.size() - 1, size_t{100}, size_t{10}, size_t{0}}) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(full.data(), static_cast<std::streamsize>(keep));
+    ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }), {path});
+  }
+}
+
+TEST(ParamMipmapTest, CorruptExrBytes) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "noise.exr").string();
+  WriteParamMipmap(RandomMipmap(16, 16, 4), path);
+  const std::string full = ReadFileToString(path);
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 50; ++trial) {
+    std::string bytes = full;
+    for (int i = 0; i < 8; ++i) {
+      bytes[random() % bytes.size()] = static_cast<char>(random());
+    }
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+    // Either an error naming the file or a well-formed result; no crash.
+    try {
+      const ParamMipmap back = ReadParamMipmap(path);
+      EXPECT_EQ(back.levels.size(), 5u);
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos);
+    }
+  }
+}
+
+TEST(ParamMipmapTest, MissingFiles) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "p.exr").string();
+  ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }),
+            {path + ".json", "cannot read"});
+
+  WriteParamMipmap(RandomMipmap(4, 4, 3), path);
+  fs::remove(path + ".json");
+  ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }),
+            {path + ".json", "cannot read"});
+
+  WriteParamMipmap(RandomMipmap(4, 4, 3), path);
+  fs::remove(path);
+  ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }), {path});
+}
+
+TEST(ParamMipmapTest, BadIndex) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "p.exr").string();
+  const std::string index_path = path + ".json";
+  WriteParamMipmap(RandomMipmap(8, 4, 3), path);
+  const std::string good = ReadFileToString(index_path);
+  auto with_index = [&](const std::string& text) {
+    WriteFileAtomically(index_path, text);
+    return ErrorOf([&] { ReadParamMipmap(path); });
+  };
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    const size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+
+  // A channel the EXR does not have.
+  ExpectHas(with_index(replaced("\"lut.0.R\"", "\"lobe0.Cx.R\"")),
+            {path, "channel 'lobe0.Cx.R'", "missing"});
+  ExpectHas(with_index("{not json"), {index_path, "invalid JSON"});
+  ExpectHas(with_index(""), {index_path, "invalid JSON"});
+  ExpectHas(with_index("[]"), {index_path, "object"});
+  ExpectHas(with_index(replaced("clothfit-param-mipmap 1", "other 2")),
+            {index_path, "'format'"});
+  ExpectHas(with_index(replaced("\"width\": 8", "\"width\": \"8\"")),
+            {index_path, "'width'"});
+  ExpectHas(with_index(replaced("\"levels\": 4", "\"levels\": 3")),
+            {index_path, "'levels'"});
+  ExpectHas(with_index(replaced("\"width\": 8", "\"width\": 16")),
+            {index_path, "'levels'"});
+  ExpectHas(with_index(replaced("\"height\": 4", "\"height\": 5")),
+            {path, "image is 8 x 4, index says 8 x 5"});
+  ExpectHas(with_index(replaced("\"lut.0.G\"", "\"lut.0.R\"")),
+            {index_path, "duplicate"});
+  ExpectHas(with_index(replaced("\"metadata\": {}", "\"metadata\": 3")),
+            {index_path, "'metadata'"});
+
+  // A subset of the EXR's channels is fine.
+  const ParamMipmap subset =
+      (WriteFileAtomically(index_path, replaced(",\n    \"lut.0.B\"", "")),
+       ReadParamMipmap(path));
+  EXPECT_EQ(subset.channels.size(), 2u);
+}
+
+TEST(ParamMipmapTest, NotAMipmappedExr) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "p.exr").string();
+  WriteParamMipmap(RandomMipmap(4, 4, 1), path);
+  // Not an EXR at all.
+  WriteFileAtomically(path, "this is not an OpenEXR file");
+  ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }), {path});
+}
+
+}  // namespace
+}  // namespace clothfit
