@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "io/table.h"
 #include "models/evaluate.h"
@@ -628,6 +629,68 @@ TEST(CliTest, FitBadUsage) {
                  {"fit", "--model", "thread", "--data", data, "--loss", "l1",
                   "--out", out},
                  {"--loss"});
+}
+
+// Lafortune: a virtual-gonioreflectometer table -> per-texel and mip-level
+// fits -> an EXR parameter mip map with its index; and one model for a
+// table without texels, evaluated by `clothfit eval`.
+TEST(CliTest, LafortuneFromVirtualGonioWritesParameterMipmap) {
+  const fs::path dir = TestDir();
+  const std::string table = (dir / "g.csv").string();
+  const RunResult synth =
+      RunClothfit(dir, {"synth", "--gonio", "plain", "--texels", "2",
+                        "--directions", "3", "--out", table});
+  ASSERT_EQ(synth.status, 0) << Describe(synth);
+  const std::string exr = (dir / "g.exr").string();
+  const RunResult fit =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                        "--lobes", "1", "--mip", "--threads", "2", "--out", exr});
+  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  EXPECT_NE(fit.out.find("level 1: 1x1"), std::string::npos) << fit.out;
+  const ParamMipmap m = ReadParamMipmap(exr);
+  ASSERT_EQ(m.levels.size(), 2u);
+  EXPECT_EQ(m.levels[0].width, 2);
+  EXPECT_NE(std::find(m.channels.begin(), m.channels.end(), "lobe0.N.G"),
+            m.channels.end());
+  EXPECT_NE(std::find(m.channels.begin(), m.channels.end(), "lut.8.A"),
+            m.channels.end());  // 3 x 3 views
+}
+
+TEST(CliTest, LafortuneSingleTableFitThenEval) {
+  const fs::path dir = TestDir();
+  // A Lafortune model written by hand, sampled by synth, fitted back.
+  WriteText(dir / "truth.json",
+            "{\"model\": \"lafortune\", \"diffuse\": [0.3, 0.2, 0.1], "
+            "\"lobes\": [{\"Cx\": [-0.9, -0.9, -0.9], \"Cy\": [-0.8, -0.8, "
+            "-0.8], \"Cz\": [0.9, 0.9, 0.9], \"N\": [8, 10, 12]}]}");
+  const std::string table = (dir / "t.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--params",
+                              (dir / "truth.json").string(), "--rows", "800",
+                              "--quantity", "cosine_weighted", "--out", table})
+                .status,
+            0);
+  const std::string out = (dir / "fit.json").string();
+  const RunResult fit = RunClothfit(
+      dir, {"fit", "--model", "lafortune", "--data", table, "--lobes", "1",
+            "--no-lut", "--out", out});
+  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  const ParamFile p = ReadParamFile(out);
+  const LafortuneModel& m = std::get<LafortuneModel>(p.params);
+  EXPECT_NEAR(m.params.diffuse.x, 0.3, 0.01);
+  EXPECT_NE(p.fit_json.find("relative_rms"), std::string::npos);
+  const RunResult eval = RunClothfit(
+      dir, {"eval", "--params", out, "--dirs", table, "--quantity",
+            "cosine_weighted", "--out", (dir / "e.csv").string()});
+  EXPECT_EQ(eval.status, 0) << Describe(eval);
+  // Output kinds must match the table: texels -> .exr, none -> .json.
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", table, "--out",
+                  (dir / "x.exr").string()},
+                 {".json"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", table, "--lobes",
+                  "5", "--out", out},
+                 {"--lobes"});
 }
 
 }  // namespace
