@@ -97,8 +97,8 @@ int RunFit(int argc, char** argv) {
   // Lafortune fits take other options (apps/cmd_fit_lafortune.cc).
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--model=lafortune" ||
-        (a == "--model" && i + 1 < argc && std::string(argv[i + 1]) == "lafortune")) {
+    if (a == "--model=lafortune" || (a == "--model" && i + 1 < argc &&
+                                     std::string(argv[i + 1]) == "lafortune")) {
       return RunFitLafortune(argc, argv);
     }
   }

@@ -5,9 +5,8 @@
 
 #include <cstdio>
 #include <iostream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "apps/commands.h"
 #include "fitting/lafortune_fit.h"
@@ -28,8 +27,8 @@ void ShowProgress(int done, int total) {
   constexpr int kWidth = 30;
   const int filled = total > 0 ? done * kWidth / total : kWidth;
   std::cerr << "\r\033[K[" << std::string(filled, '#')
-            << std::string(kWidth - filled, '.') << "] " << done << "/"
-            << total << " texel fits" << std::flush;
+            << std::string(kWidth - filled, '.') << "] " << done << "/" << total
+            << " texel fits" << std::flush;
   if (done == total) std::cerr << "\n";
 }
 
@@ -51,13 +50,17 @@ int RunFitLafortune(int argc, char** argv) {
   args.Option("model", "M", "lafortune");
   args.Option("data", "T.csv", "measurement table (SPEC §2), s,t optional");
   args.Option("stack", "M.csv", "image-stack manifest instead of --data");
-  args.Option("out", "P.json|P.exr", "result: JSON for one model, EXR per texel");
+  args.Option("out", "P.json|P.exr",
+              "result: JSON for one model, EXR per texel");
   args.Option("lobes", "K", "number of lobes, 0 to 3", "2");
   args.Option("tolerance", "REL",
               "per texel, the smallest K (0..3) whose relative rms error is "
               "at most REL");
   args.Flag("mip", "also fit the mip levels (2x2 groups down to 1x1)");
   args.Flag("no-lut", "no lookup table (T = 1)");
+  args.Flag("data-start",
+            "also try a start scaled to the data and keep the better "
+            "(slower; docs/lafortune.md)");
   args.Option("lut-threshold", "X",
               "stop alternating when T changes less than this (mean relative)",
               "0.1");
@@ -76,6 +79,7 @@ int RunFitLafortune(int argc, char** argv) {
   if (lobes < 0 || lobes > 3) args.Fail("option '--lobes': must be 0 to 3");
   options.fit.lobes = static_cast<int>(lobes);
   options.fit.lookup_table = !args.Has("no-lut");
+  options.fit.data_driven_start = args.Has("data-start");
   options.fit.lut_threshold = args.GetDouble("lut-threshold");
   if (!(options.fit.lut_threshold >= 0.0)) {
     args.Fail("option '--lut-threshold': must be >= 0");
@@ -98,7 +102,8 @@ int RunFitLafortune(int argc, char** argv) {
   options.mip = args.Has("mip");
   if (args.Has("tolerance")) {
     options.tolerance = args.GetDouble("tolerance");
-    if (!(options.tolerance > 0.0)) args.Fail("option '--tolerance': must be > 0");
+    if (!(options.tolerance > 0.0))
+      args.Fail("option '--tolerance': must be > 0");
   }
   MeasurementTable table;
   if (args.Has("stack")) {
@@ -116,8 +121,9 @@ int RunFitLafortune(int argc, char** argv) {
 
   if (!table.has_texels) {  // one model for the whole table
     if (!EndsWith(out_path, ".json")) {
-      args.Fail("a table without s,t columns gives one model: --out must be "
-                "a .json parameter file");
+      args.Fail(
+          "a table without s,t columns gives one model: --out must be "
+          "a .json parameter file");
     }
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
     const ViewIndex views(table);
@@ -137,21 +143,23 @@ int RunFitLafortune(int argc, char** argv) {
       LafortuneFitOptions o = options.fit;
       o.lobes = k;
       const LafortuneFitResult r = FitLafortune(samples, o);
-      if (k == 0 || !best.usable || (r.usable && r.relative_rms < best.relative_rms)) {
+      if (k == 0 || !best.usable ||
+          (r.usable && r.relative_rms < best.relative_rms)) {
         best = r;
         chosen_lobes = k;
       }
-      if (options.tolerance > 0 && r.usable && r.relative_rms <= options.tolerance) {
+      if (options.tolerance > 0 && r.usable &&
+          r.relative_rms <= options.tolerance) {
         best = r;
         chosen_lobes = k;
         break;
       }
     }
-    std::printf("lafortune fit: %s, %d lobe(s), %d alternation(s), %d "
-                "iterations\nrms %.4g, relative rms %.4g over %zu samples\n",
-                best.usable ? "usable" : "FAILED", chosen_lobes,
-                best.alternations, best.iterations, best.rms,
-                best.relative_rms, samples.size());
+    std::printf(
+        "lafortune fit: %s, %d lobe(s), %d alternation(s), %d "
+        "iterations\nrms %.4g, relative rms %.4g over %zu samples\n",
+        best.usable ? "usable" : "FAILED", chosen_lobes, best.alternations,
+        best.iterations, best.rms, best.relative_rms, samples.size());
     if (!best.usable) {
       std::cerr << "error: the fit did not reach a usable solution: "
                 << best.message << "; nothing written\n";
@@ -172,8 +180,9 @@ int RunFitLafortune(int argc, char** argv) {
   }
 
   if (!EndsWith(out_path, ".exr")) {
-    args.Fail("a table with s,t columns gives a model per texel: --out must "
-              "be an .exr file");
+    args.Fail(
+        "a table with s,t columns gives a model per texel: --out must "
+        "be an .exr file");
   }
   if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
   const LafortuneMipResult result = FitLafortuneMip(table, options);
@@ -185,10 +194,11 @@ int RunFitLafortune(int argc, char** argv) {
       worst = std::max(worst, t.relative_rms);
     }
   }
-  std::printf("lafortune fits: %d texel fit(s) over %zu level(s) in %.2f s "
-              "(%.1f fits/s), worst relative rms %.4g\n",
-              result.fits, result.levels.size(), result.seconds,
-              result.fits / std::max(result.seconds, 1e-9), worst);
+  std::printf(
+      "lafortune fits: %d texel fit(s) over %zu level(s) in %.2f s "
+      "(%.1f fits/s), worst relative rms %.4g\n",
+      result.fits, result.levels.size(), result.seconds,
+      result.fits / std::max(result.seconds, 1e-9), worst);
   for (size_t l = 0; l < result.levels.size(); ++l) {
     const LafortuneLevel& level = result.levels[l];
     double sum = 0.0;
@@ -197,11 +207,11 @@ int RunFitLafortune(int argc, char** argv) {
       sum += t.relative_rms;
       ++counts[std::clamp(t.lobes, 0, 3)];
     }
-    std::printf("  level %zu: %dx%d, %zu samples, mean relative rms %.4g, "
-                "lobes 0/1/2/3: %d/%d/%d/%d\n",
-                l, level.width, level.height, level.samples,
-                sum / level.texels.size(), counts[0], counts[1], counts[2],
-                counts[3]);
+    std::printf(
+        "  level %zu: %dx%d, %zu samples, mean relative rms %.4g, "
+        "lobes 0/1/2/3: %d/%d/%d/%d\n",
+        l, level.width, level.height, level.samples, sum / level.texels.size(),
+        counts[0], counts[1], counts[2], counts[3]);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());

@@ -20,7 +20,8 @@ int RunGonio(const CommandArgs& args) {
   }
   const long texels = args.GetInt("texels");
   const long directions = args.GetInt("directions");
-  if (texels < 1 || texels > 1024) args.Fail("option '--texels': must be in [1, 1024]");
+  if (texels < 1 || texels > 1024)
+    args.Fail("option '--texels': must be in [1, 1024]");
   if (directions < 1 || directions > 64) {
     args.Fail("option '--directions': must be in [1, 64]");
   }
@@ -70,7 +71,8 @@ int RunSynth(int argc, char** argv) {
               "satin or knit (instead of a model)");
   args.Option("texels", "S", "gonio: S x S texels", "8");
   args.Option("directions", "N", "gonio: N x N light and view directions", "8");
-  args.Option("stack", "M.csv", "gonio: write an image stack (manifest) "
+  args.Option("stack", "M.csv",
+              "gonio: write an image stack (manifest) "
               "instead of --out");
   args.Option("image-ext", "EXT", "gonio stack image format", ".exr");
   if (!args.Parse(argc, argv, 2)) return 0;

@@ -6,11 +6,10 @@
 //   build/benchmarks/lafortune_benchmark --benchmark_repetitions=3
 //       --benchmark_report_aggregates_only=true      (one command line)
 // Counters: fits/s, mean relative RMS error of level 0, peak RSS (MB).
+#include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
 #include <map>
-
-#include <benchmark/benchmark.h>
 
 #include "data_synthetic/virtual_gonio.h"
 #include "fitting/lafortune_mip.h"

@@ -1,12 +1,12 @@
 #include "fitting/lafortune_fit.h"
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <unordered_map>
-
-#include <ceres/ceres.h>
 
 #include "io/input_error.h"
 #include "models/evaluate.h"
@@ -134,7 +134,8 @@ struct PassResult {
 };
 
 // Fits all three channels' lobes with the given lookup table.
-PassResult FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
+PassResult FitLobes(const TexelSamples& samples,
+                    const std::vector<glm::dvec3>& t,
                     const LafortuneFitOptions& options, LafortuneParams* p) {
   PassResult out;
   const int lobes = static_cast<int>(p->lobes.size());
@@ -177,8 +178,8 @@ ViewIndex::ViewIndex(const MeasurementTable& table) {
   row_pair_.resize(table.rows.size());
   for (size_t i = 0; i < table.rows.size(); ++i) {
     const TableRow& row = table.rows[i];
-    const std::array<long long, 6> view = {Round(row.wo.x), Round(row.wo.y),
-                                           Round(row.wo.z), 0, 0, 0};
+    const std::array<long long, 6> view = {
+        Round(row.wo.x), Round(row.wo.y), Round(row.wo.z), 0, 0, 0};
     std::array<long long, 6> pair = view;
     pair[3] = Round(row.wi.x);
     pair[4] = Round(row.wi.y);
@@ -195,8 +196,9 @@ TexelSamples CollectSamples(const MeasurementTable& table,
                             const ViewIndex& views,
                             const std::vector<size_t>& rows, int* skipped) {
   if (table.quantity == Quantity::kTransmittance) {
-    throw InputError("a Lafortune model predicts reflection (brdf or "
-                     "cosine_weighted), not transmittance");
+    throw InputError(
+        "a Lafortune model predicts reflection (brdf or "
+        "cosine_weighted), not transmittance");
   }
   TexelSamples s;
   s.views = views.views();
@@ -249,8 +251,9 @@ TexelSamples CollectSamples(const MeasurementTable& table,
 }
 
 void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
-                     const std::vector<size_t>& rows, double* rms,
-                     double* relative_rms) {
+                     const ViewIndex& views, const std::vector<size_t>& rows,
+                     double* rms, double* relative_rms) {
+  const bool same_views = model.lut.views.size() == views.views().size();
   double se = 0.0, ss = 0.0;
   size_t n = 0;
   for (size_t index : rows) {
@@ -258,7 +261,9 @@ void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
     if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) continue;
     const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
     const glm::dvec3 y = row.value * to_rho;
-    const glm::dvec3 d = LafortuneRho(model, row.wi, row.wo) - y;
+    const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]
+                                    : LookupView(model.lut, row.wo).color;
+    const glm::dvec3 d = t * LafortuneF1(model.params, row.wi, row.wo) - y;
     se += glm::dot(d, d);
     ss += glm::dot(y, y);
     ++n;
@@ -289,9 +294,9 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     num += samples.weight[i] * samples.value[i] * samples.l[i].z;
     den += samples.weight[i] * samples.l[i].z * samples.l[i].z;
   }
-  const glm::dvec3 rho_d =
-      glm::dvec3(den.x > 0 ? num.x / den.x : 0.0, den.y > 0 ? num.y / den.y : 0.0,
-                 den.z > 0 ? num.z / den.z : 0.0);
+  const glm::dvec3 rho_d = glm::dvec3(den.x > 0 ? num.x / den.x : 0.0,
+                                      den.y > 0 ? num.y / den.y : 0.0,
+                                      den.z > 0 ? num.z / den.z : 0.0);
   for (size_t i = 0; i < samples.size(); ++i) {
     const glm::dvec3 excess =
         samples.value[i] / std::max(samples.l[i].z, 1e-3) - rho_d;
@@ -343,7 +348,8 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         for (int c = 0; c < 3; ++c) {
           if (!(ff[k][c] > 1e-12 * ff_max[c])) continue;  // no signal
           const double updated = std::clamp(fr[k][c] / ff[k][c], 0.0, kMaxT);
-          change += std::abs(updated - t[k][c]) / std::max(std::abs(t[k][c]), 1e-12);
+          change +=
+              std::abs(updated - t[k][c]) / std::max(std::abs(t[k][c]), 1e-12);
           ++counted;
           t[k][c] = updated;
         }

@@ -4,9 +4,8 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
-#include <thread>
-
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "io/input_error.h"
 
@@ -32,9 +31,9 @@ TexelFit FitTexel(const MeasurementTable& table, const ViewIndex& views,
     fit.samples = static_cast<int>(rows.size());
     fit.usable = r.usable;
     double rms = 0.0;  // over the rows, not the merged samples
-    LafortuneErrors(r.model, table, rows, &rms, &fit.relative_rms);
-    const bool better = !best.usable || (fit.usable &&
-                                         fit.relative_rms < best.relative_rms);
+    LafortuneErrors(r.model, table, views, rows, &rms, &fit.relative_rms);
+    const bool better =
+        !best.usable || (fit.usable && fit.relative_rms < best.relative_rms);
     if (k == counts.front() || better) best = fit;
     if (options.tolerance > 0.0 && fit.usable &&
         fit.relative_rms <= options.tolerance) {
@@ -54,8 +53,9 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     throw InputError("a spatially varying fit needs s,t texel columns");
   }
   if (table.quantity == Quantity::kTransmittance) {
-    throw InputError("a Lafortune model predicts reflection, not "
-                     "transmittance");
+    throw InputError(
+        "a Lafortune model predicts reflection, not "
+        "transmittance");
   }
   LafortuneMipResult out;
   const ViewIndex views(table);
@@ -194,7 +194,8 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
       for (size_t v = 0; v < result.views.size(); ++v) {
         const bool has = v < lut.color.size();
         for (int c = 0; c < 3; ++c) {
-          image.data[ch++][i] = has ? static_cast<float>(lut.color[v][c]) : 1.0f;
+          image.data[ch++][i] =
+              has ? static_cast<float>(lut.color[v][c]) : 1.0f;
         }
         image.data[ch++][i] = has ? static_cast<float>(lut.alpha[v]) : 1.0f;
       }
@@ -219,8 +220,8 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
   return m;
 }
 
-LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level,
-                                    int x, int y) {
+LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
+                                    int y) {
   if (level < 0 || level >= static_cast<int>(mipmap.levels.size())) {
     throw InputError("mip level " + std::to_string(level) + " out of range");
   }
@@ -260,9 +261,8 @@ LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level,
                                      views[v][1].get<double>(),
                                      views[v][2].get<double>()));
     const std::string prefix = "lut." + std::to_string(v) + ".";
-    m.lut.color.push_back(glm::dvec3(channel(prefix + "R"),
-                                     channel(prefix + "G"),
-                                     channel(prefix + "B")));
+    m.lut.color.push_back(glm::dvec3(
+        channel(prefix + "R"), channel(prefix + "G"), channel(prefix + "B")));
     m.lut.alpha.push_back(channel(prefix + "A"));
   }
   return m;

@@ -17,8 +17,8 @@ namespace clothfit {
 
 struct LafortuneMipOptions {
   LafortuneFitOptions fit;
-  bool mip = true;     // all levels down to 1 x 1; false: level 0 only
-  int threads = 0;     // 0: std::thread::hardware_concurrency()
+  bool mip = true;  // all levels down to 1 x 1; false: level 0 only
+  int threads = 0;  // 0: std::thread::hardware_concurrency()
   // > 0: per texel, the smallest lobe count K in 0..3 whose relative RMS
   // error is at most this (else the K with the lowest error).
   double tolerance = 0.0;
@@ -62,7 +62,7 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result);
 
 // Texel (x, y) of `level` read back from a mip map written by
 // ToParamMipmap (its metadata holds the views).
-LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level,
-                                    int x, int y);
+LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
+                                    int y);
 
 }  // namespace clothfit

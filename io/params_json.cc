@@ -264,7 +264,8 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
       const json& views = lut.Get("views");
       const json& colors = lut.Get("color");
       if (!views.is_array() || !colors.is_array()) {
-        lut.Fail("lut", "views and color must be arrays of [x, y, z] / [r, g, b]");
+        lut.Fail("lut",
+                 "views and color must be arrays of [x, y, z] / [r, g, b]");
       }
       auto vec3_at = [&](const json& list, size_t k, const std::string& key) {
         const std::string where = "lut." + key + "[" + std::to_string(k) + "]";

@@ -34,8 +34,8 @@ struct TableRow {
   glm::dvec3 sigma{1.0};         // 1-sigma error per channel (> 0)
   double weight = 1.0;           // residual weight (>= 0)
   int s = -1, t = -1;            // texel indices, -1 when absent
-  double alpha = 1.0;            // coverage of the view, [0, 1] (column "alpha")
-  int source_line = 0;           // 1-based line in the file (0: made in memory)
+  double alpha = 1.0;   // coverage of the view, [0, 1] (column "alpha")
+  int source_line = 0;  // 1-based line in the file (0: made in memory)
 };
 
 struct MeasurementTable {

@@ -118,9 +118,9 @@ Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
   Vec3<T> sum = p.diffuse;
   for (const LafortuneLobeT<T>& lobe : p.lobes) {
     for (int c = 0; c < 3; ++c) {
-      sum[c] += LobePower(T(xx) * lobe.cx[c] + T(yy) * lobe.cy[c] +
-                              T(zz) * lobe.cz[c],
-                          lobe.n[c]);
+      sum[c] += LobePower(
+          T(xx) * lobe.cx[c] + T(yy) * lobe.cy[c] + T(zz) * lobe.cz[c],
+          lobe.n[c]);
     }
   }
   return sum * T(l.z);
@@ -134,8 +134,8 @@ T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
   T sum = x[0];
   for (int k = 0; k < lobes; ++k) {
     const T* lobe = x + 1 + 4 * k;
-    sum += LobePower(T(xx) * lobe[0] + T(yy) * lobe[1] + T(zz) * lobe[2],
-                     lobe[3]);
+    sum +=
+        LobePower(T(xx) * lobe[0] + T(yy) * lobe[1] + T(zz) * lobe[2], lobe[3]);
   }
   return sum * T(l.z);
 }

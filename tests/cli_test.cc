@@ -642,9 +642,9 @@ TEST(CliTest, LafortuneFromVirtualGonioWritesParameterMipmap) {
                         "--directions", "3", "--out", table});
   ASSERT_EQ(synth.status, 0) << Describe(synth);
   const std::string exr = (dir / "g.exr").string();
-  const RunResult fit =
-      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
-                        "--lobes", "1", "--mip", "--threads", "2", "--out", exr});
+  const RunResult fit = RunClothfit(
+      dir, {"fit", "--model", "lafortune", "--data", table, "--lobes", "1",
+            "--mip", "--threads", "2", "--out", exr});
   ASSERT_EQ(fit.status, 0) << Describe(fit);
   EXPECT_NE(fit.out.find("level 1: 1x1"), std::string::npos) << fit.out;
   const ParamMipmap m = ReadParamMipmap(exr);
@@ -670,17 +670,17 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
                 .status,
             0);
   const std::string out = (dir / "fit.json").string();
-  const RunResult fit = RunClothfit(
-      dir, {"fit", "--model", "lafortune", "--data", table, "--lobes", "1",
-            "--no-lut", "--out", out});
+  const RunResult fit =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                        "--lobes", "1", "--no-lut", "--out", out});
   ASSERT_EQ(fit.status, 0) << Describe(fit);
   const ParamFile p = ReadParamFile(out);
   const LafortuneModel& m = std::get<LafortuneModel>(p.params);
   EXPECT_NEAR(m.params.diffuse.x, 0.3, 0.01);
   EXPECT_NE(p.fit_json.find("relative_rms"), std::string::npos);
-  const RunResult eval = RunClothfit(
-      dir, {"eval", "--params", out, "--dirs", table, "--quantity",
-            "cosine_weighted", "--out", (dir / "e.csv").string()});
+  const RunResult eval =
+      RunClothfit(dir, {"eval", "--params", out, "--dirs", table, "--quantity",
+                        "cosine_weighted", "--out", (dir / "e.csv").string()});
   EXPECT_EQ(eval.status, 0) << Describe(eval);
   // Output kinds must match the table: texels -> .exr, none -> .json.
   ExpectBadInput(dir,

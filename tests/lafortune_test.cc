@@ -1,10 +1,10 @@
 // Lafortune lobes with per-view lookup tables: the model (models/
 // lafortune.h), the alternating fit and the mip-level group fits.
-#include <cmath>
-#include <vector>
-
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
 
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
@@ -86,7 +86,8 @@ TEST(LafortuneModel, LobeFormulaAndClampedPower) {
   p.lobes = {lobe};
   const glm::dvec3 l = glm::normalize(glm::dvec3(0.3, 0.2, 0.9));
   const glm::dvec3 mirror(-l.x, -l.y, l.z);
-  // At the mirror direction the dot is lx^2 + ly^2 + lz^2 = 1: f1 = lz (0.1 + 1).
+  // At the mirror direction the dot is lx^2 + ly^2 + lz^2 = 1: f1 = lz (0.1 +
+  // 1).
   EXPECT_NEAR(LafortuneF1(p, l, mirror).x, l.z * 1.1, 1e-15);
   // Where the lobe's dot is negative the lobe is 0, not NaN.
   const glm::dvec3 v = glm::normalize(glm::dvec3(0.9, 0.3, 0.1));
@@ -231,13 +232,13 @@ TEST(LafortuneMip, GroupFitEqualsDirectFitOfPooledSamples) {
     const TableRow& row = table.rows[i];
     if (row.s >= 2 && row.t <= 1) rows.push_back(i);
   }
-  const LafortuneFitResult direct =
-      FitLafortune(CollectSamples(table, ViewIndex(table), rows, nullptr),
-                   options.fit);
+  const LafortuneFitResult direct = FitLafortune(
+      CollectSamples(table, ViewIndex(table), rows, nullptr), options.fit);
   const TexelFit& group = r.levels[1].texels[0 * 2 + 1];
   EXPECT_EQ(group.samples, static_cast<int>(rows.size()));
   double rms = 0.0, relative_rms = 0.0;
-  LafortuneErrors(direct.model, table, rows, &rms, &relative_rms);
+  LafortuneErrors(direct.model, table, ViewIndex(table), rows, &rms,
+                  &relative_rms);
   EXPECT_NEAR(group.relative_rms, relative_rms, 1e-9 + 1e-9 * relative_rms);
   const std::vector<glm::dvec3> probe = Hemisphere(3, 0.21);
   for (const glm::dvec3& l : probe) {
