@@ -14,15 +14,21 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
 
+using text_util::FormatNumber;
+using text_util::Lower;
+using text_util::OneLine;
+using text_util::Quote;
+using text_util::SplitFields;
+using text_util::Trim;
+
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegreesPerRadian = 180.0 / kPi;
 constexpr double kRadiansPerDegree = kPi / 180.0;
-// Longest excerpt of a field quoted in an error message.
-constexpr size_t kMaxQuotedLength = 40;
 
 // Columns a table may have. The order is the order of semantic checks.
 enum ColumnId : int {
@@ -57,77 +63,8 @@ constexpr std::array<const char*, kColumnCount> kColumnNames = {
     "g",       "b",     "sigma",   "sigma_r", "sigma_g", "sigma_b",
     "weight",  "alpha", "s",       "t"};
 
-bool IsSpace(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' ||
-         c == '\f';
-}
-
-std::string_view Trim(std::string_view text) {
-  while (!text.empty() && IsSpace(text.front())) text.remove_prefix(1);
-  while (!text.empty() && IsSpace(text.back())) text.remove_suffix(1);
-  return text;
-}
-
-// ASCII-only lower-casing; other bytes pass through unchanged.
-std::string Lower(std::string_view text) {
-  std::string lower(text);
-  for (char& c : lower) {
-    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-  }
-  return lower;
-}
-
-// Quotes (part of) a field for an error message: printable ASCII is kept,
-// other bytes are escaped, long fields are shortened.
-std::string Quote(std::string_view text) {
-  std::string quoted = "'";
-  for (size_t i = 0; i < text.size() && i < kMaxQuotedLength; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') {
-      quoted += static_cast<char>(c);
-    } else {
-      char escaped[8];
-      std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
-      quoted += escaped;
-    }
-  }
-  if (text.size() > kMaxQuotedLength) quoted += "...";
-  quoted += '\'';
-  return quoted;
-}
-
-std::string FormatNumber(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
-  return buffer;
-}
-
 std::string ColumnLabel(int column) {
   return std::string("column '") + kColumnNames[column] + "'";
-}
-
-std::vector<std::string_view> SplitFields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = line.find(',', start);
-    if (comma == std::string_view::npos) {
-      fields.push_back(line.substr(start));
-      return fields;
-    }
-    fields.push_back(line.substr(start, comma - start));
-    start = comma + 1;
-  }
-}
-
-// Removes newlines (which would end a metadata line early) from text that
-// goes into a '#' line.
-std::string OneLine(std::string_view text) {
-  std::string line(text);
-  for (char& c : line) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  return line;
 }
 
 bool IsRecognisedMetaKey(const std::string& key) {

@@ -21,6 +21,7 @@
 #include "io/table.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
+#include "tests/test_dir.h"
 
 namespace clothfit {
 namespace {
@@ -29,16 +30,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A fresh, empty directory for one test under CLOTHFIT_TEST_TMP.
-fs::path TestDir() {
-  const testing::TestInfo* info =
-      testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(CLOTHFIT_TEST_TMP) / (std::string("cli_test_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("cli_test_"); }
 
 std::string ReadText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

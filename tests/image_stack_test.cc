@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/table.h"
+#include "tests/test_dir.h"
 
 namespace clothfit {
 namespace {
@@ -21,16 +22,7 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A fresh, empty directory for one test under CLOTHFIT_TEST_TMP.
-fs::path TestDir() {
-  const testing::TestInfo* info =
-      testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(CLOTHFIT_TEST_TMP) /
-                       (std::string("image_stack_test_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("image_stack_test_"); }
 
 void WriteText(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);

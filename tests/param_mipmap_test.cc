@@ -12,22 +12,14 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "tests/test_dir.h"
 
 namespace clothfit {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A fresh, empty directory for one test under CLOTHFIT_TEST_TMP.
-fs::path TestDir() {
-  const testing::TestInfo* info =
-      testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir = fs::path(CLOTHFIT_TEST_TMP) /
-                       (std::string("param_mipmap_test_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("param_mipmap_test_"); }
 
 // A mip map of random values with `channels` channels over a width x height
 // base, down to 1 x 1.

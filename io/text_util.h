@@ -1,0 +1,39 @@
+// Small text helpers shared by the table and image-stack readers/writers.
+// Internal to clothfit_io; not part of the library's public interface.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace clothfit {
+namespace text_util {
+
+// Longest excerpt of a field quoted in an error message.
+inline constexpr size_t kMaxQuotedLength = 40;
+
+// True for the ASCII whitespace characters " \t\r\n\v\f".
+bool IsSpace(char c);
+
+// `text` without leading and trailing ASCII whitespace.
+std::string_view Trim(std::string_view text);
+
+// ASCII-only lower-casing; other bytes pass through unchanged.
+std::string Lower(std::string_view text);
+
+// Quotes (part of) a field for an error message: printable ASCII is kept,
+// other bytes are escaped, fields longer than kMaxQuotedLength are shortened.
+std::string Quote(std::string_view text);
+
+// Splits `line` at every comma (no quoting); always at least one field.
+std::vector<std::string_view> SplitFields(std::string_view line);
+
+// `value` printed with "%.17g", enough digits to round-trip a double.
+std::string FormatNumber(double value);
+
+// `text` with newlines replaced by spaces, so it fits on one '#' line.
+std::string OneLine(std::string_view text);
+
+}  // namespace text_util
+}  // namespace clothfit
