@@ -73,6 +73,9 @@ ceres::CostFunction* MakeChannelCost(int lobes, const TexelSamples* samples,
 // below 0.5 makes a lobe a near-constant); T in [0, 1e3].
 constexpr double kMinN = 0.5, kMaxN = 200.0, kMaxC = 3.0, kMaxT = 1e3;
 
+// Iteration cap of the lobe fits after the first pass (warm starts).
+constexpr int kLaterPassIterations = 8;
+
 // One Levenberg-Marquardt pass on one channel; returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
                  int channel, int lobes, int max_iterations, double* x) {
@@ -100,7 +103,7 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
     problem.SetParameterUpperBound(x, 4 + 4 * k, kMaxN);
   }
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
+  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = max_iterations;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
@@ -355,8 +358,12 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         }
       }
       out.lut_change = counted ? change / counted : 0.0;
+      // Later passes start next to their solution: a few iterations do.
+      LafortuneFitOptions later = options;
+      later.max_iterations =
+          std::min(options.max_iterations, kLaterPassIterations);
       LafortuneParams p = best;
-      out.iterations += FitLobes(samples, t, options, &p).iterations;
+      out.iterations += FitLobes(samples, t, later, &p).iterations;
       ++out.alternations;
       if (Finite(p)) best = p;
       if (out.lut_change < options.lut_threshold) break;
