@@ -87,10 +87,12 @@ void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
     Fail(path, "bad base size " + std::to_string(width) + " x " +
                    std::to_string(height));
   }
-  const int expected_levels = LevelCount(width, height);
+  // Either the full chain down to 1 x 1 or the base level alone.
+  const int full_levels = LevelCount(width, height);
+  const int expected_levels = mipmap.levels.size() == 1 ? 1 : full_levels;
   if (static_cast<int>(mipmap.levels.size()) != expected_levels) {
     Fail(path, "a " + std::to_string(width) + " x " + std::to_string(height) +
-                   " base needs " + std::to_string(expected_levels) +
+                   " base needs 1 level or " + std::to_string(full_levels) +
                    " levels (down to 1 x 1), got " +
                    std::to_string(mipmap.levels.size()));
   }
@@ -166,8 +168,11 @@ void WriteExr(const ParamMipmap& mipmap, const std::string& path) {
   const std::string temp = MakeTempFile(path);
   try {
     Imf::Header header(width, height);
+    const bool mipmapped =
+        static_cast<int>(mipmap.levels.size()) == LevelCount(width, height);
     header.setTileDescription(Imf::TileDescription(
-        kTileSize, kTileSize, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+        kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
+        Imf::ROUND_DOWN));
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const std::string& name : mipmap.channels) {
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
@@ -239,11 +244,11 @@ Index ReadIndex(const std::string& name) {
     Fail(name, "bad size " + std::to_string(result.width) + " x " +
                    std::to_string(result.height));
   }
-  const int expected_levels = LevelCount(result.width, result.height);
-  if (result.levels != expected_levels) {
+  const int full_levels = LevelCount(result.width, result.height);
+  if (result.levels != 1 && result.levels != full_levels) {
     Fail(name, "key 'levels': a " + std::to_string(result.width) + " x " +
-                   std::to_string(result.height) + " base has " +
-                   std::to_string(expected_levels) + " levels, index says " +
+                   std::to_string(result.height) + " base has 1 or " +
+                   std::to_string(full_levels) + " levels, index says " +
                    std::to_string(result.levels));
   }
   const auto channels = index.find("channels");
@@ -284,9 +289,14 @@ Index ReadIndex(const std::string& name) {
 void ReadExr(const std::string& path, const Index& index, ParamMipmap* mipmap) {
   Imf::TiledInputFile in(path.c_str());
   const Imf::Header& header = in.header();
-  if (!header.hasTileDescription() || in.levelMode() != Imf::MIPMAP_LEVELS ||
-      in.levelRoundingMode() != Imf::ROUND_DOWN) {
-    Fail(path, "not a mip-mapped OpenEXR file (MIPMAP_LEVELS, ROUND_DOWN)");
+  const bool one_level =
+      header.hasTileDescription() && in.levelMode() == Imf::ONE_LEVEL;
+  if (!header.hasTileDescription() ||
+      !(one_level || (in.levelMode() == Imf::MIPMAP_LEVELS &&
+                      in.levelRoundingMode() == Imf::ROUND_DOWN))) {
+    Fail(path,
+         "not a tiled OpenEXR file with one level or MIPMAP_LEVELS, "
+         "ROUND_DOWN");
   }
   const Imath::Box2i& window = header.dataWindow();
   const int64_t width = int64_t{window.max.x} - window.min.x + 1;

@@ -4,6 +4,8 @@
 // channels, their meaning and units, and any extra metadata (e.g. the view
 // directions of a lookup table). Level l of a W x H base has
 // max(1, W >> l) x max(1, H >> l) texels; every level holds every channel.
+// A map holds either every level down to 1 x 1 (MIPMAP_LEVELS) or the base
+// level alone (a tiled ONE_LEVEL file, for fits without mip levels).
 #pragma once
 
 #include <string>

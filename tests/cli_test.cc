@@ -648,6 +648,28 @@ TEST(CliTest, LafortuneFromVirtualGonioWritesParameterMipmap) {
             m.channels.end());  // 3 x 3 views
 }
 
+// The same through an image stack: synth --gonio --stack writes one EXR
+// per (light, view) pair and a manifest; fit --stack reads them back.
+TEST(CliTest, LafortuneFromImageStack) {
+  const fs::path dir = TestDir();
+  const std::string manifest = (dir / "stack.csv").string();
+  const RunResult synth =
+      RunClothfit(dir, {"synth", "--gonio", "satin", "--texels", "2",
+                        "--directions", "2", "--stack", manifest});
+  ASSERT_EQ(synth.status, 0) << Describe(synth);
+  EXPECT_TRUE(fs::exists(dir / "stack_0000.exr"));
+  EXPECT_TRUE(fs::exists(dir / "stack_0015.exr"));  // 4 lights x 4 views
+  const std::string exr = (dir / "s.exr").string();
+  const RunResult fit =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--stack", manifest,
+                        "--lobes", "1", "--out", exr});
+  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  const ParamMipmap m = ReadParamMipmap(exr);
+  ASSERT_EQ(m.levels.size(), 1u);  // no --mip: level 0 only
+  EXPECT_EQ(m.levels[0].width, 2);
+  EXPECT_EQ(m.levels[0].height, 2);
+}
+
 TEST(CliTest, LafortuneSingleTableFitThenEval) {
   const fs::path dir = TestDir();
   // A Lafortune model written by hand, sampled by synth, fitted back.

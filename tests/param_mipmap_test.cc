@@ -117,6 +117,21 @@ TEST(ParamMipmapTest, RoundTripManyChannels) {
   }
 }
 
+// A fit without mip levels writes the base level alone (ONE_LEVEL tiles).
+TEST(ParamMipmapTest, RoundTripBaseLevelOnly) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "base.exr").string();
+  ParamMipmap mipmap = RandomMipmap(5, 3, 7);
+  mipmap.levels.resize(1);
+  WriteParamMipmap(mipmap, path);
+  const ParamMipmap back = ReadParamMipmap(path);
+  ASSERT_EQ(back.levels.size(), 1u);
+  EXPECT_EQ(back.levels[0].width, 5);
+  EXPECT_EQ(back.levels[0].height, 3);
+  EXPECT_EQ(back.levels[0].data, mipmap.levels[0].data);
+  EXPECT_EQ(back.channels, mipmap.channels);
+}
+
 TEST(ParamMipmapTest, RoundTripOddAndLargerSizes) {
   const fs::path dir = TestDir();
   for (const auto& [width, height] : {std::pair{1, 1}, std::pair{1, 7},
@@ -144,7 +159,7 @@ TEST(ParamMipmapTest, RejectsInconsistentMipmaps) {
   ParamMipmap missing_level = RandomMipmap(8, 4, 2);
   missing_level.levels.pop_back();
   ExpectHas(ErrorOf([&] { WriteParamMipmap(missing_level, path); }),
-            {path, "needs 4 levels", "got 3"});
+            {path, "needs 1 level or 4 levels", "got 3"});
 
   ParamMipmap wrong_size = RandomMipmap(8, 4, 2);
   wrong_size.levels[2].width = 1;
