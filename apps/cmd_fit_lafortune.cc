@@ -128,38 +128,22 @@ int RunFitLafortune(int argc, char** argv) {
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
     const ViewIndex views(table);
     std::vector<size_t> rows(table.rows.size());
-    for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
     int skipped = 0;
-    const TexelSamples samples = CollectSamples(table, views, rows, &skipped);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      rows[i] = i;
+      skipped += !(table.rows[i].wi.z > 0.0 && table.rows[i].wo.z > 0.0);
+    }
     if (skipped > 0) {
       std::cerr << "warning: " << skipped
                 << " row(s) are not reflection (wi.z or wo.z <= 0) and are "
                    "not used\n";
     }
-    LafortuneFitResult best;
-    int chosen_lobes = options.fit.lobes;
-    for (int k = options.tolerance > 0 ? 0 : options.fit.lobes;
-         k <= (options.tolerance > 0 ? 3 : options.fit.lobes); ++k) {
-      LafortuneFitOptions o = options.fit;
-      o.lobes = k;
-      const LafortuneFitResult r = FitLafortune(samples, o);
-      if (k == 0 || !best.usable ||
-          (r.usable && r.relative_rms < best.relative_rms)) {
-        best = r;
-        chosen_lobes = k;
-      }
-      if (options.tolerance > 0 && r.usable &&
-          r.relative_rms <= options.tolerance) {
-        best = r;
-        chosen_lobes = k;
-        break;
-      }
-    }
+    const TexelFit best = FitTexelRows(table, views, rows, options);
     std::printf(
         "lafortune fit: %s, %d lobe(s), %d alternation(s), %d "
-        "iterations\nrms %.4g, relative rms %.4g over %zu samples\n",
-        best.usable ? "usable" : "FAILED", chosen_lobes, best.alternations,
-        best.iterations, best.rms, best.relative_rms, samples.size());
+        "iterations\nrms %.4g, relative rms %.4g over %zu rows\n",
+        best.usable ? "usable" : "FAILED", best.lobes, best.alternations,
+        best.iterations, best.rms, best.relative_rms, rows.size() - skipped);
     if (!best.usable) {
       std::cerr << "error: the fit did not reach a usable solution: "
                 << best.message << "; nothing written\n";
@@ -167,13 +151,13 @@ int RunFitLafortune(int argc, char** argv) {
     }
     nlohmann::ordered_json fit;
     fit["usable"] = true;
-    fit["lobes"] = chosen_lobes;
+    fit["lobes"] = best.lobes;
     fit["alternations"] = best.alternations;
     fit["iterations"] = best.iterations;
     fit["rms"] = best.rms;
     fit["relative_rms"] = best.relative_rms;
     fit["lut_change"] = best.lut_change;
-    fit["samples"] = samples.size();
+    fit["rows"] = rows.size() - skipped;
     WriteParamFile(ParamFile{best.model, fit.dump()}, out_path);
     std::printf("wrote %s\n", out_path.c_str());
     return 0;

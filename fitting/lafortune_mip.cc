@@ -14,9 +14,11 @@ namespace {
 
 const char* const kRgb[] = {"R", "G", "B"};
 
-TexelFit FitTexel(const MeasurementTable& table, const ViewIndex& views,
-                  const std::vector<size_t>& rows,
-                  const LafortuneMipOptions& options) {
+}  // namespace
+
+TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
+                      const std::vector<size_t>& rows,
+                      const LafortuneMipOptions& options) {
   const TexelSamples samples = CollectSamples(table, views, rows, nullptr);
   TexelFit best;
   std::vector<int> counts = {options.fit.lobes};
@@ -30,8 +32,12 @@ TexelFit FitTexel(const MeasurementTable& table, const ViewIndex& views,
     fit.lobes = k;
     fit.samples = static_cast<int>(rows.size());
     fit.usable = r.usable;
-    double rms = 0.0;  // over the rows, not the merged samples
-    LafortuneErrors(r.model, table, views, rows, &rms, &fit.relative_rms);
+    fit.message = r.message;
+    fit.alternations = r.alternations;
+    fit.iterations = r.iterations;
+    fit.lut_change = r.lut_change;
+    // Errors over the rows, not the merged samples.
+    LafortuneErrors(r.model, table, views, rows, &fit.rms, &fit.relative_rms);
     const bool better =
         !best.usable || (fit.usable && fit.relative_rms < best.relative_rms);
     if (k == counts.front() || better) best = fit;
@@ -43,8 +49,6 @@ TexelFit FitTexel(const MeasurementTable& table, const ViewIndex& views,
   }
   return best;
 }
-
-}  // namespace
 
 LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
                                    const LafortuneMipOptions& options) {
@@ -112,7 +116,8 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     for (size_t j = next_job++; j < jobs.size(); j = next_job++) {
       const auto [l, t] = jobs[j];
       try {
-        out.levels[l].texels[t] = FitTexel(table, views, rows[l][t], options);
+        out.levels[l].texels[t] =
+            FitTexelRows(table, views, rows[l][t], options);
       } catch (...) {
         std::lock_guard<std::mutex> lock(progress_mutex);
         if (!error) error = std::current_exception();

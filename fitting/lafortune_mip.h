@@ -30,9 +30,13 @@ struct LafortuneMipOptions {
 struct TexelFit {
   LafortuneModel model;
   int lobes = 0;
-  int samples = 0;
+  int samples = 0;   // table rows of the texel
+  double rms = 0.0;  // over those rows (as rho)
   double relative_rms = 0.0;
   bool usable = false;
+  std::string message;  // why not usable
+  int alternations = 0, iterations = 0;
+  double lut_change = 0.0;
 };
 
 struct LafortuneLevel {
@@ -47,6 +51,13 @@ struct LafortuneMipResult {
   int fits = 0;
   double seconds = 0.0;
 };
+
+// One texel (or a whole table): the fit of the given rows with
+// options.fit, or with options.tolerance > 0 the smallest K in 0..3 whose
+// relative RMS over the rows is at most the tolerance (else the best K).
+TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
+                      const std::vector<size_t>& rows,
+                      const LafortuneMipOptions& options);
 
 // Throws InputError for a table without s,t columns or a transmittance
 // table. Level 0 is (max s + 1) x (max t + 1); a level of odd size pools
