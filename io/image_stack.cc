@@ -25,6 +25,7 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
+#include "models/math.h"
 
 namespace clothfit {
 namespace {
@@ -38,7 +39,6 @@ using text_util::Quote;
 using text_util::SplitFields;
 using text_util::Trim;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegreesPerRadian = 180.0 / kPi;
 // Largest image accepted (pixels), against corrupt headers.
 constexpr int64_t kMaxPixels = int64_t{1} << 28;

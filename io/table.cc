@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
+#include "models/math.h"
 
 namespace clothfit {
 namespace {
@@ -26,7 +27,6 @@ using text_util::Quote;
 using text_util::SplitFields;
 using text_util::Trim;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegreesPerRadian = 180.0 / kPi;
 constexpr double kRadiansPerDegree = kPi / 180.0;
 

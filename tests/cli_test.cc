@@ -21,7 +21,7 @@
 #include "io/table.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
-#include "tests/test_dir.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {

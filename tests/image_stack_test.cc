@@ -13,7 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/table.h"
-#include "tests/test_dir.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -29,25 +29,8 @@ void WriteText(const fs::path& path, const std::string& text) {
   out << text;
 }
 
-// Runs `action` and returns the InputError message ("" if none).
-template <typename Action>
-std::string ErrorOf(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
-
-void ExpectHas(const std::string& message,
-               std::initializer_list<std::string> pieces) {
-  ASSERT_FALSE(message.empty()) << "no error";
-  for (const std::string& piece : pieces) {
-    EXPECT_NE(message.find(piece), std::string::npos)
-        << "'" << piece << "' not in: " << message;
-  }
-}
+using testing_util::ErrorOf;
+using testing_util::ExpectHas;
 
 void ExpectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
   EXPECT_NEAR(a.x, b.x, tolerance);

@@ -12,7 +12,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
-#include "tests/test_dir.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -49,25 +49,8 @@ ParamMipmap RandomMipmap(int width, int height, int channels,
   return mipmap;
 }
 
-// Runs `action` and returns the InputError message ("" if none).
-template <typename Action>
-std::string ErrorOf(Action action) {
-  try {
-    action();
-  } catch (const InputError& error) {
-    return error.what();
-  }
-  return "";
-}
-
-void ExpectHas(const std::string& message,
-               std::initializer_list<std::string> pieces) {
-  ASSERT_FALSE(message.empty()) << "no error";
-  for (const std::string& piece : pieces) {
-    EXPECT_NE(message.find(piece), std::string::npos)
-        << "'" << piece << "' not in: " << message;
-  }
-}
+using testing_util::ErrorOf;
+using testing_util::ExpectHas;
 
 void ExpectSame(const ParamMipmap& a, const ParamMipmap& b) {
   EXPECT_EQ(a.channels, b.channels);

@@ -11,7 +11,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
-#include "tests/test_dir.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {
