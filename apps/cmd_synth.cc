@@ -6,6 +6,7 @@
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "io/image_stack.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 
@@ -25,8 +26,15 @@ int RunGonio(const CommandArgs& args) {
   if (directions < 1 || directions > 64) {
     args.Fail("option '--directions': must be in [1, 64]");
   }
+  const long supersample = args.GetInt("supersample");
+  if (supersample < 1 || supersample > 16) {
+    args.Fail("option '--supersample': must be in [1, 16]");
+  }
   options.texels = static_cast<int>(texels);
   options.directions = static_cast<int>(directions);
+  options.supersample = static_cast<int>(supersample);
+  options.glossy = args.GetDouble("glossy");
+  options.gap = args.GetDouble("gap");
   options.seed = static_cast<uint64_t>(args.GetInt("seed"));
   const MeasurementTable table = MeasureVirtualGonio(options);
   if (args.Has("stack")) {
@@ -49,7 +57,8 @@ int RunSynth(int argc, char** argv) {
       "clothfit synth (--params P.json | --preset NAME) --out T.csv "
       "[--rows N] [--noise F] [--seed S] [--dirs D.csv] [--quantity Q]\n"
       "       clothfit synth --gonio plain|satin|knit [--texels S] "
-      "[--directions N] [--seed S] (--out T.csv | --stack M.csv)",
+      "[--directions N] [--supersample K] [--seed S] (--out T.csv | --stack "
+      "M.csv)",
       "Writes a synthetic measurement table: the model's values at random "
       "directions (uniform in solid angle,\n5 % of rows at grazing 89.9 deg) "
       "or at the directions of D.csv, with multiplicative Gaussian noise.\n"
@@ -71,6 +80,14 @@ int RunSynth(int argc, char** argv) {
               "satin or knit (instead of a model)");
   args.Option("texels", "S", "gonio: S x S texels", "8");
   args.Option("directions", "N", "gonio: N x N light and view directions", "8");
+  args.Option("supersample", "K",
+              "gonio: K x K rays per texel and direction (footprint average)",
+              std::to_string(VirtualGonioOptions().supersample));
+  args.Option("glossy", "W", "gonio: weight of the glossy term, >= 0",
+              text_util::FormatNumber(VirtualGonioOptions().glossy));
+  args.Option("gap", "G",
+              "gonio: space between threads in tile units (0: no holes)",
+              text_util::FormatNumber(VirtualGonioOptions().gap));
   args.Option("stack", "M.csv",
               "gonio: write an image stack (manifest) "
               "instead of --out");

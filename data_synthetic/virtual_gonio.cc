@@ -501,6 +501,7 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
   table.direction_columns = DirectionColumns::kVectors;
   table.has_texels = true;
   table.has_alpha = true;
+  table.has_normal = true;
   table.rows.resize(static_cast<size_t>(texel_count) * pairs * pairs);
 
   // One texel: all its views, lights and sub-samples. Writes only that
@@ -509,6 +510,7 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
     const int s = texel % s_count;
     const int t = texel / s_count;
     std::vector<ViewHit> hits(subsamples);
+    glm::dvec3 normal_sum(0.0);
     for (int view = 0; view < pairs; ++view) {
       const glm::dvec3& v = dirs[view];
       int covered = 0;
@@ -528,6 +530,7 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
         h.normal = glm::normalize(glm::dvec3(-point.sample.gradient, 1.0));
         h.tangent = point.sample.tangent;
         h.colour = threads[point.thread].colour;
+        normal_sum += h.normal;
         ++covered;
       }
       const double alpha = static_cast<double>(covered) / subsamples;
@@ -559,6 +562,17 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
         row.t = t;
         row.alpha = alpha;
       }
+    }
+    // The texel's average normal over the hits of all its views (the
+    // paper's Section 4: normals summed per sampling point, averaged at
+    // the end); +z where no view ray hits.
+    const glm::dvec3 normal = glm::length(normal_sum) > 0.0
+                                  ? glm::normalize(normal_sum)
+                                  : glm::dvec3(0.0, 0.0, 1.0);
+    const size_t first = static_cast<size_t>(texel) * pairs * pairs;
+    for (size_t i = first; i < first + static_cast<size_t>(pairs) * pairs;
+         ++i) {
+      table.rows[i].normal = normal;
     }
   };
 

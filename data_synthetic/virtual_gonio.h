@@ -37,7 +37,9 @@
 // hits is shaded towards the light with a shadow ray. Per (texel, view,
 // light): value = mean over the k x k rays of the shaded radiance (so holes
 // darken the value), alpha = fraction of the rays that hit a thread (the
-// same for every light).
+// same for every light). Each texel's rows carry its average normal (the
+// normalised sum of the hit normals over all its views and rays), the frame
+// the paper fits the texel's lobes in.
 //
 // Shading at a hit with normal n, thread tangent t, thread colour c (radiance
 // per unit irradiance, i.e. the cosine-weighted quantity rho):

@@ -245,6 +245,16 @@ TexelSamples CollectSamples(const MeasurementTable& table,
                                            : s.value[k][c] / s.count_rows[k];
     }
   }
+  if (table.has_normal) {
+    glm::dvec3 normal_sum(0.0);
+    for (size_t index : rows) normal_sum += table.rows[index].normal;
+    if (glm::length(normal_sum) > 0.0) s.normal = glm::normalize(normal_sum);
+    const TexelFrame frame = MakeTexelFrame(s.normal);
+    for (size_t k = 0; k < s.l.size(); ++k) {
+      s.l[k] = ToTexelFrame(frame, s.l[k]);
+      s.v[k] = ToTexelFrame(frame, s.v[k]);
+    }
+  }
   s.view_alpha.resize(s.views.size());
   for (size_t k = 0; k < s.views.size(); ++k) {
     s.view_alpha[k] = alpha_count[k] ? alpha_sum[k] / alpha_count[k] : 1.0;
@@ -255,10 +265,17 @@ TexelSamples CollectSamples(const MeasurementTable& table,
 
 void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
                      const ViewIndex& views, const std::vector<size_t>& rows,
-                     double* rms, double* relative_rms) {
+                     double* rms, double* relative_rms,
+                     double* view_relative_rms) {
   const bool same_views = model.lut.views.size() == views.views().size();
+  const TexelFrame frame = MakeTexelFrame(model.normal);
   double se = 0.0, ss = 0.0;
   size_t n = 0;
+  // Per view: sums of model - data and of data, and the row count.
+  const size_t n_views = views.views().size();
+  std::vector<glm::dvec3> view_d(n_views, glm::dvec3(0.0)),
+      view_y(n_views, glm::dvec3(0.0));
+  std::vector<int> view_n(n_views, 0);
   for (size_t index : rows) {
     const TableRow& row = table.rows[index];
     if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) continue;
@@ -266,13 +283,31 @@ void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
     const glm::dvec3 y = row.value * to_rho;
     const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]
                                     : LookupView(model.lut, row.wo).color;
-    const glm::dvec3 d = t * LafortuneF1(model.params, row.wi, row.wo) - y;
+    const glm::dvec3 d =
+        t * LafortuneF1(model.params, ToTexelFrame(frame, row.wi),
+                        ToTexelFrame(frame, row.wo)) -
+        y;
     se += glm::dot(d, d);
     ss += glm::dot(y, y);
     ++n;
+    const int view = views.RowView(index);
+    view_d[view] += d;
+    view_y[view] += y;
+    ++view_n[view];
   }
   *rms = n ? std::sqrt(se / (3.0 * n)) : 0.0;
   *relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+  if (view_relative_rms) {
+    double vse = 0.0, vss = 0.0;
+    for (size_t k = 0; k < n_views; ++k) {
+      if (view_n[k] == 0) continue;
+      const glm::dvec3 d = view_d[k] / double(view_n[k]);
+      const glm::dvec3 y = view_y[k] / double(view_n[k]);
+      vse += glm::dot(d, d);
+      vss += glm::dot(y, y);
+    }
+    *view_relative_rms = vss > 0.0 ? std::sqrt(vse / vss) : 0.0;
+  }
 }
 
 LafortuneFitResult FitLafortune(const TexelSamples& samples,
@@ -283,6 +318,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   std::vector<glm::dvec3> t(n_views, glm::dvec3(1.0));
   out.model.lut.views = samples.views;
   out.model.lut.alpha = samples.view_alpha;
+  out.model.normal = samples.normal;
   if (samples.size() == 0) {
     out.model.params = PaperStart(lobes, 0.0, 1.0);
     out.model.lut.color = t;

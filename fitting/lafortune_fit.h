@@ -18,6 +18,9 @@ namespace clothfit {
 // The samples of one texel: directions in its local frame, values
 // (cosine-weighted), 1/sigma^2 * weight, and the index of the view.
 struct TexelSamples {
+  // The texel's average normal (surface frame); l and v are in the frame
+  // MakeTexelFrame(normal).
+  glm::dvec3 normal{0.0, 0.0, 1.0};
   std::vector<glm::dvec3> l, v, value, weight;
   std::vector<int> view;           // index into views
   std::vector<int> count_rows;     // table rows merged into each sample
@@ -52,6 +55,10 @@ class ViewIndex {
 // (m - y_i)^2 = W (m - y_mean)^2 + const) and keeps the work of a pooled
 // mip-level fit at that of one texel. Rows that are not reflection (wi.z
 // <= 0 or wo.z <= 0) are skipped and counted in *skipped (may be null).
+// A table with normal columns gives the rows' mean normal as the texel's
+// (a pooled group: the average of its texels' normals, as the paper's
+// Section 5.1), and l, v are rotated into its frame; else the surface
+// frame.
 // Throws InputError for a transmittance table.
 TexelSamples CollectSamples(const MeasurementTable& table,
                             const ViewIndex& views,
@@ -59,9 +66,14 @@ TexelSamples CollectSamples(const MeasurementTable& table,
 
 // RMS and relative RMS error of a model over table rows (as rho). Rows
 // at a stored view use its lookup-table entry directly (no interpolation).
+// view_relative_rms (may be null): the relative RMS error of each view's
+// colour - the mean over the view's rows (all its lights) of model and data
+// - over the views: the view-dependent colour the paper's Fig. 5 shows
+// (colour shifts at grazing views), which the lookup table is for.
 void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
                      const ViewIndex& views, const std::vector<size_t>& rows,
-                     double* rms, double* relative_rms);
+                     double* rms, double* relative_rms,
+                     double* view_relative_rms = nullptr);
 
 struct LafortuneFitOptions {
   int lobes = 2;               // K, 0 to 3

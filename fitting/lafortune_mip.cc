@@ -37,7 +37,8 @@ TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
     fit.iterations = r.iterations;
     fit.lut_change = r.lut_change;
     // Errors over the rows, not the merged samples.
-    LafortuneErrors(r.model, table, views, rows, &fit.rms, &fit.relative_rms);
+    LafortuneErrors(r.model, table, views, rows, &fit.rms, &fit.relative_rms,
+                    &fit.view_relative_rms);
     const bool better =
         !best.usable || (fit.usable && fit.relative_rms < best.relative_rms);
     if (k == counts.front() || better) best = fit;
@@ -154,6 +155,9 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
   }
   ParamMipmap m;
   m.channels = {"lobes", "relative_rms"};
+  for (const char* c : {"X", "Y", "Z"}) {
+    m.channels.push_back(std::string("normal.") + c);
+  }
   for (const char* c : kRgb) m.channels.push_back(std::string("diffuse.") + c);
   for (int k = 0; k < lobes; ++k) {
     for (const char* p : {"Cx", "Cy", "Cz", "N"}) {
@@ -179,6 +183,7 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
       size_t ch = 0;
       image.data[ch++][i] = static_cast<float>(p.lobes.size());
       image.data[ch++][i] = static_cast<float>(t.relative_rms);
+      for (int c = 0; c < 3; ++c) image.data[ch++][i] = t.model.normal[c];
       for (int c = 0; c < 3; ++c) image.data[ch++][i] = p.diffuse[c];
       for (int k = 0; k < lobes; ++k) {
         const bool has = k < static_cast<int>(p.lobes.size());
@@ -210,12 +215,16 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
   nlohmann::ordered_json meta;
   meta["model"] = "lafortune";
   meta["lobes"] = lobes;
-  meta["frame"] = "surface frame: normal +z, warp (tangent) +x";
+  meta["frame"] =
+      "directions and normal.XYZ in the surface frame (normal +z, warp +x); "
+      "the lobes in each texel's frame: n = normal.XYZ, b = normalize(n x "
+      "x), t = b x n";
   meta["quantity"] = "cosine_weighted";
   meta["lut_interpolation"] = "shepard, angular distance power 3";
   meta["units"] = {{"diffuse", "unitless reflectance"},
                    {"Cx/Cy/Cz", "unitless"},
                    {"N", "unitless exponent"},
+                   {"normal", "unit vector (surface frame)"},
                    {"lut", "unitless factor (RGB) and coverage (A)"},
                    {"relative_rms", "RMS(model - data) / RMS(data)"}};
   nlohmann::ordered_json views = nlohmann::ordered_json::array();
@@ -248,6 +257,9 @@ LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
   for (int c = 0; c < 3; ++c) {
     m.params.diffuse[c] = channel(std::string("diffuse.") + kRgb[c]);
   }
+  const glm::dvec3 normal(channel("normal.X"), channel("normal.Y"),
+                          channel("normal.Z"));
+  if (glm::length(normal) > 0.0) m.normal = glm::normalize(normal);
   const int lobes = static_cast<int>(channel("lobes"));
   for (int k = 0; k < lobes; ++k) {
     LafortuneLobe lobe;

@@ -33,6 +33,7 @@ struct TexelFit {
   int samples = 0;   // table rows of the texel
   double rms = 0.0;  // over those rows (as rho)
   double relative_rms = 0.0;
+  double view_relative_rms = 0.0;  // of the per-view colour (LafortuneErrors)
   bool usable = false;
   std::string message;  // why not usable
   int alternations = 0, iterations = 0;

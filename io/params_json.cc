@@ -259,6 +259,15 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
       lr.Finish();
       m.params.lobes.push_back(lobe);
     }
+    if (r.Has("normal")) {  // the texel's average normal (lobes' frame)
+      const std::vector<double> n = r.NumberArray("normal");
+      const glm::dvec3 v =
+          n.size() == 3 ? glm::dvec3(n[0], n[1], n[2]) : glm::dvec3(0.0);
+      if (!(n.size() == 3 && v.z > 0.0)) {
+        r.Fail("normal", "must be 3 numbers [x, y, z] with z > 0");
+      }
+      m.normal = glm::normalize(v);
+    }
     if (r.Has("lut")) {
       ObjectReader lut(r.Get("lut"), name, "lut");
       const json& views = lut.Get("views");
@@ -332,6 +341,7 @@ std::string FormatParamFile(const ParamFile& file) {
       lobes.push_back(l);
     }
     j["lobes"] = lobes;
+    j["normal"] = rgb(m->normal);
     if (!m->lut.views.empty()) {
       json views = json::array(), colors = json::array();
       for (size_t k = 0; k < m->lut.views.size(); ++k) {

@@ -54,14 +54,17 @@ enum ColumnId : int {
   kAlpha,
   kS,
   kT,
+  kNormalX,
+  kNormalY,
+  kNormalZ,
   kColumnCount
 };
 
 constexpr std::array<const char*, kColumnCount> kColumnNames = {
-    "theta_i", "phi_i", "theta_o", "phi_o",   "wi_x",    "wi_y",
-    "wi_z",    "wo_x",  "wo_y",    "wo_z",    "value",   "r",
-    "g",       "b",     "sigma",   "sigma_r", "sigma_g", "sigma_b",
-    "weight",  "alpha", "s",       "t"};
+    "theta_i", "phi_i",    "theta_o",  "phi_o",   "wi_x",   "wi_y",  "wi_z",
+    "wo_x",    "wo_y",     "wo_z",     "value",   "r",      "g",     "b",
+    "sigma",   "sigma_r",  "sigma_g",  "sigma_b", "weight", "alpha", "s",
+    "t",       "normal_x", "normal_y", "normal_z"};
 
 std::string ColumnLabel(int column) {
   return std::string("column '") + kColumnNames[column] + "'";
@@ -177,7 +180,7 @@ void TableParser::ParseHeader(std::string_view text, int line) {
            "unknown column " + Quote(name) + " (expected " +
                "theta_i,phi_i,theta_o,phi_o or wi_x,wi_y,wi_z,wo_x,wo_y,wo_z; "
                "value or r,g,b; optional sigma or sigma_r,sigma_g,sigma_b, "
-               "weight, alpha, s,t)");
+               "weight, alpha, s,t, normal_x,normal_y,normal_z)");
     }
     const int column = static_cast<int>(known - kColumnNames.begin());
     if (Has(column)) {
@@ -255,6 +258,8 @@ void TableParser::ParseHeader(std::string_view text, int line) {
   table.has_alpha = Has(kAlpha);
   if (Has(kS) || Has(kT)) RequireAll(kS, 2, line);
   table.has_texels = Has(kS);
+  if (FirstPresent(kNormalX, 3) >= 0) RequireAll(kNormalX, 3, line);
+  table.has_normal = Has(kNormalX);
 }
 
 double TableParser::Angle(int column) const {
@@ -309,6 +314,22 @@ void TableParser::ParseRow(std::string_view text, int line) {
   auto fail_at = [&](int column, const std::string& problem) {
     Fail(line, field_of_[column] + 1, ColumnLabel(column) + ": " + problem);
   };
+  auto vector_at = [&](int first) {
+    const glm::dvec3 v(numbers_[first], numbers_[first + 1],
+                       numbers_[first + 2]);
+    // Scale first so that tiny or huge components neither underflow nor
+    // overflow while normalising.
+    const double scale =
+        std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(scale > 0.0)) {
+      fail_at(first, std::string("zero vector (") + kColumnNames[first] + ", " +
+                         kColumnNames[first + 1] + ", " +
+                         kColumnNames[first + 2] + ")");
+    }
+    const glm::dvec3 scaled = v / scale;
+    return scaled / std::sqrt(scaled.x * scaled.x + scaled.y * scaled.y +
+                              scaled.z * scaled.z);
+  };
   TableRow row;
   row.source_line = line;
   const MeasurementTable& table = result_.table;
@@ -334,23 +355,6 @@ void TableParser::ParseRow(std::string_view text, int line) {
     }
     row.wo = DirectionFromAngles(Angle(kThetaO), Angle(kPhiO));
   } else {
-    auto vector_at = [&](int first) {
-      const glm::dvec3 v(numbers_[first], numbers_[first + 1],
-                         numbers_[first + 2]);
-      // Scale first so that tiny or huge components neither underflow nor
-      // overflow while normalising.
-      const double scale =
-          std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-      if (!(scale > 0.0)) {
-        fail_at(first, std::string("zero direction vector (") +
-                           kColumnNames[first] + ", " +
-                           kColumnNames[first + 1] + ", " +
-                           kColumnNames[first + 2] + ")");
-      }
-      const glm::dvec3 scaled = v / scale;
-      return scaled / std::sqrt(scaled.x * scaled.x + scaled.y * scaled.y +
-                                scaled.z * scaled.z);
-    };
     if (incident_columns_) row.wi = vector_at(kWiX);
     row.wo = vector_at(kWoX);
   }
@@ -394,6 +398,8 @@ void TableParser::ParseRow(std::string_view text, int line) {
     }
     row.alpha = numbers_[kAlpha];
   }
+
+  if (Has(kNormalX)) row.normal = vector_at(kNormalX);
 
   if (Has(kS)) {
     auto texel = [&](int column) {
@@ -566,6 +572,9 @@ std::string FormatTable(const MeasurementTable& table) {
   }
   if (table.has_weight) header.push_back("weight");
   if (table.has_alpha) header.push_back("alpha");
+  if (table.has_normal) {
+    header.insert(header.end(), {"normal_x", "normal_y", "normal_z"});
+  }
   if (table.has_texels) header.insert(header.end(), {"s", "t"});
   for (size_t i = 0; i < header.size(); ++i) {
     if (i > 0) out += ',';
@@ -603,6 +612,9 @@ std::string FormatTable(const MeasurementTable& table) {
     }
     if (table.has_weight) numbers.push_back(row.weight);
     if (table.has_alpha) numbers.push_back(row.alpha);
+    if (table.has_normal) {
+      numbers.insert(numbers.end(), {row.normal.x, row.normal.y, row.normal.z});
+    }
     for (size_t i = 0; i < numbers.size(); ++i) {
       if (i > 0) out += ',';
       out += FormatNumber(numbers[i]);

@@ -34,7 +34,11 @@ struct TableRow {
   glm::dvec3 sigma{1.0};         // 1-sigma error per channel (> 0)
   double weight = 1.0;           // residual weight (>= 0)
   int s = -1, t = -1;            // texel indices, -1 when absent
-  double alpha = 1.0;   // coverage of the view, [0, 1] (column "alpha")
+  double alpha = 1.0;  // coverage of the view, [0, 1] (column "alpha")
+  // The texel's average surface normal, unit (columns
+  // "normal_x,normal_y,normal_z"): the frame a spatially varying fit
+  // evaluates the texel's lobes in (Daubert et al. 2001, Section 3).
+  glm::dvec3 normal{0.0, 0.0, 1.0};
   int source_line = 0;  // 1-based line in the file (0: made in memory)
 };
 
@@ -48,6 +52,7 @@ struct MeasurementTable {
   bool has_weight = false;
   bool has_texels = false;  // s,t columns present
   bool has_alpha = false;   // alpha column present (per-view coverage)
+  bool has_normal = false;  // normal_x,normal_y,normal_z columns present
   std::vector<TableRow> rows;
 
   // Value of a metadata key (case-insensitive), if present.

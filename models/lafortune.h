@@ -5,7 +5,13 @@
 //   model(l, v) = T(v) f1(l, v)                           (channel-wise)
 // with [a]^N = 0 for a <= 0. l and v are unit vectors in the texel's local
 // frame (normal +z, tangent +x); the model predicts the cosine-weighted
-// quantity rho. A specular lobe has Cx = Cy < 0 < Cz (the mirror of l is
+// quantity rho. A texel whose average normal n is tilted from the surface
+// normal has its own frame (Section 4 of the paper): bi-normal b
+// perpendicular to n and the surface's x axis, tangent t = b x n; a
+// renderer rotates l and v into it (TexelFrame, ToTexelFrame). There l.z
+// can be negative where the surface frame has it positive; l.z is then
+// taken as 0 (a foreshortening factor cannot be negative). A specular lobe has
+// Cx = Cy < 0 < Cz (the mirror of l is
 // (-lx, -ly, lz)); Cx != Cy makes it anisotropic.
 //
 // The lookup table T(v) stores rgb and alpha for each measured view. Between
@@ -123,7 +129,7 @@ Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
           lobe.n[c]);
     }
   }
-  return sum * T(l.z);
+  return sum * T(l.z > G(0.0) ? l.z : G(0.0));
 }
 
 // f1 of one channel only (what the per-channel fit evaluates).
@@ -137,7 +143,34 @@ T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
     sum +=
         LobePower(T(xx) * lobe[0] + T(yy) * lobe[1] + T(zz) * lobe[2], lobe[3]);
   }
-  return sum * T(l.z);
+  return sum * T(l.z > G(0.0) ? l.z : G(0.0));
+}
+
+// A texel's local frame: tangent, bi-normal, normal (unit, right-handed).
+struct TexelFrame {
+  glm::dvec3 t{1.0, 0.0, 0.0}, b{0.0, 1.0, 0.0}, n{0.0, 0.0, 1.0};
+};
+
+// The frame of a texel with average normal `normal` (Daubert et al. 2001,
+// Section 4): b is perpendicular to the normal and the x axis, t = b x n;
+// the normal +z gives the surface frame itself. A normal along +-x (never
+// above a surface) takes b = +y.
+inline TexelFrame MakeTexelFrame(const glm::dvec3& normal) {
+  TexelFrame f;
+  const double len = glm::length(normal);
+  if (!(len > 0.0) || !std::isfinite(len)) return f;
+  f.n = normal / len;
+  glm::dvec3 b = glm::cross(f.n, glm::dvec3(1.0, 0.0, 0.0));
+  const double b_len = glm::length(b);
+  b = b_len > 1e-12 ? b / b_len : glm::dvec3(0.0, 1.0, 0.0);
+  f.b = b;
+  f.t = glm::cross(b, f.n);
+  return f;
+}
+
+// w (in the surface frame) in the texel's frame.
+inline glm::dvec3 ToTexelFrame(const TexelFrame& f, const glm::dvec3& w) {
+  return glm::dvec3(glm::dot(w, f.t), glm::dot(w, f.b), glm::dot(w, f.n));
 }
 
 // The per-view lookup table T(v): stored views (unit vectors in the local
@@ -198,18 +231,24 @@ inline std::string ValidateViewTable(const ViewTable& t) {
   return "";
 }
 
-// A fitted texel: lobes and lookup table.
+// A fitted texel: lobes, lookup table, and the texel's average normal
+// (surface frame; +z: the lobes live in the surface frame itself).
 struct LafortuneModel {
   LafortuneParams params;
   ViewTable lut;
+  glm::dvec3 normal{0.0, 0.0, 1.0};
 };
 
-// The model's cosine-weighted value T(v) f1(l, v); zero unless l.z > 0 and
-// v.z > 0.
+// The model's cosine-weighted value T(v) f1(l', v'), with l, v in the
+// surface frame and l', v' in the texel's frame; zero unless l.z > 0 and
+// v.z > 0. The lookup table is indexed by the measured (surface-frame)
+// view.
 inline glm::dvec3 LafortuneRho(const LafortuneModel& m, const glm::dvec3& l,
                                const glm::dvec3& v) {
   if (!(l.z > 0.0 && v.z > 0.0)) return glm::dvec3(0.0);
-  return LookupView(m.lut, v).color * LafortuneF1(m.params, l, v);
+  const TexelFrame frame = MakeTexelFrame(m.normal);
+  return LookupView(m.lut, v).color *
+         LafortuneF1(m.params, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
 }
 
 }  // namespace clothfit

@@ -609,6 +609,34 @@ TEST(TableTest, RoundTripAlpha) {
   EXPECT_EQ(FormatTable(table).find("alpha"), std::string::npos);
 }
 
+TEST(TableTest, NormalColumnsAreReadNormalisedAndRoundTrip) {
+  const ReadTableResult result = ParseTable(
+      "theta_i,phi_i,theta_o,phi_o,value,normal_x,normal_y,normal_z\n"
+      "1,2,3,4,5,0,0,2\n1,2,3,4,5,0.3,0,0.4\n",
+      "data.csv");
+  const MeasurementTable& table = result.table;
+  EXPECT_TRUE(table.has_normal);
+  EXPECT_EQ(table.rows[0].normal, glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(glm::length(table.rows[1].normal - glm::dvec3(0.6, 0, 0.8)), 0.0,
+              1e-15);
+  const MeasurementTable back = ParseTable(FormatTable(table), "mem").table;
+  EXPECT_TRUE(back.has_normal);
+  EXPECT_NEAR(glm::length(back.rows[1].normal - table.rows[1].normal), 0.0,
+              1e-15);
+  EXPECT_FALSE(ParseTable(kGoodTable, "data.csv").table.has_normal);
+}
+
+TEST(TableErrorTest, NormalColumnsIncompleteOrZero) {
+  ExpectError(
+      "theta_i,phi_i,theta_o,phi_o,value,normal_x,normal_z\n"
+      "1,2,3,4,5,0,1\n",
+      {"data.csv:1:", "missing column 'normal_y'"});
+  ExpectError(
+      "theta_i,phi_i,theta_o,phi_o,value,normal_x,normal_y,normal_z\n"
+      "1,2,3,4,5,0,0,0\n",
+      {"data.csv:2:6:", "zero vector"});
+}
+
 TEST(TableTest, RoundTripTransmittance) {
   MeasurementTable table;
   table.quantity = Quantity::kTransmittance;
