@@ -185,19 +185,23 @@ int RunFitLafortune(int argc, char** argv) {
       result.fits / std::max(result.seconds, 1e-9), worst);
   for (size_t l = 0; l < result.levels.size(); ++l) {
     const LafortuneLevel& level = result.levels[l];
-    double sum = 0.0, view_sum = 0.0;
+    double sum = 0.0, view_sum = 0.0, alternations = 0.0, iterations = 0.0;
     int counts[4] = {0, 0, 0, 0};
     for (const TexelFit& t : level.texels) {
       sum += t.relative_rms;
       view_sum += t.view_relative_rms;
+      alternations += t.alternations;
+      iterations += t.iterations;
       ++counts[std::clamp(t.lobes, 0, 3)];
     }
     const double n = static_cast<double>(level.texels.size());
     std::printf(
         "  level %zu: %dx%d, %zu samples, mean relative rms %.4g (per-view "
-        "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d\n",
+        "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d, per fit %.1f "
+        "alternations, %.0f solver iterations\n",
         l, level.width, level.height, level.samples, sum / n, view_sum / n,
-        counts[0], counts[1], counts[2], counts[3]);
+        counts[0], counts[1], counts[2], counts[3], alternations / n,
+        iterations / n);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());

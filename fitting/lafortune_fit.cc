@@ -26,43 +26,69 @@ struct KeyHash {
 
 // All residuals of one channel of one texel: (T(v_i) f1(l_i, v_i) - y_i)
 // sqrt(w_i), with T fixed (eq. 3 with the lookup table of the last pass).
+// Per sample the fixed terms are precomputed: the products l_x v_x,
+// l_y v_y, l_z v_z, the foreshortening max(l_z, 0), T sqrt(w) and
+// y sqrt(w), so that the solver's many evaluations do only the lobes.
+struct ChannelTerms {
+  double xx, yy, zz, lz, scale, target;
+};
+
 template <int kLobes>
 struct ChannelResidual {
-  const TexelSamples* samples;
-  std::vector<double> lut;  // T(v) of this channel, per view
-  int channel;
+  const std::vector<ChannelTerms> terms;
 
   template <typename T>
   bool operator()(const T* x, T* residual) const {
-    const TexelSamples& s = *samples;
-    for (size_t i = 0; i < s.size(); ++i) {
-      const T f = LafortuneF1Channel(x, kLobes, s.l[i], s.v[i]);
-      residual[i] = (T(lut[s.view[i]]) * f - T(s.value[i][channel])) *
-                    T(std::sqrt(s.weight[i][channel]));
+    for (size_t i = 0; i < terms.size(); ++i) {
+      const ChannelTerms& s = terms[i];
+      T sum = x[0];
+      for (int k = 0; k < kLobes; ++k) {
+        const T* lobe = x + 1 + 4 * k;
+        sum += LobePower(lobe[0] * s.xx + lobe[1] * s.yy + lobe[2] * s.zz,
+                         lobe[3]);
+      }
+      residual[i] = sum * (s.lz * s.scale) - s.target;
     }
     return true;
   }
 
-  static ceres::CostFunction* Create(const TexelSamples* samples,
-                                     std::vector<double> lut, int channel) {
-    auto* f = new ChannelResidual{samples, std::move(lut), channel};
+  static ceres::CostFunction* Create(std::vector<ChannelTerms> terms) {
+    const int n = static_cast<int>(terms.size());
     return new ceres::AutoDiffCostFunction<ChannelResidual, ceres::DYNAMIC,
                                            1 + 4 * kLobes>(
-        f, static_cast<int>(samples->size()));
+        new ChannelResidual{std::move(terms)}, n);
   }
 };
 
-ceres::CostFunction* MakeChannelCost(int lobes, const TexelSamples* samples,
-                                     std::vector<double> lut, int channel) {
+std::vector<ChannelTerms> MakeChannelTerms(const TexelSamples& s,
+                                           const std::vector<double>& lut,
+                                           int channel) {
+  std::vector<ChannelTerms> terms(s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    const glm::dvec3& l = s.l[i];
+    const glm::dvec3& v = s.v[i];
+    const double root_w = std::sqrt(s.weight[i][channel]);
+    terms[i] = {l.x * v.x,
+                l.y * v.y,
+                l.z * v.z,
+                std::max(l.z, 0.0),
+                lut[s.view[i]] * root_w,
+                s.value[i][channel] * root_w};
+  }
+  return terms;
+}
+
+ceres::CostFunction* MakeChannelCost(int lobes,
+                                     std::vector<ChannelTerms> terms) {
   switch (lobes) {
     case 0:
-      return ChannelResidual<0>::Create(samples, std::move(lut), channel);
+      return ChannelResidual<0>::Create(std::move(terms));
     case 1:
-      return ChannelResidual<1>::Create(samples, std::move(lut), channel);
+      return ChannelResidual<1>::Create(std::move(terms));
     case 2:
-      return ChannelResidual<2>::Create(samples, std::move(lut), channel);
+      return ChannelResidual<2>::Create(std::move(terms));
     default:
-      return ChannelResidual<3>::Create(samples, std::move(lut), channel);
+      return ChannelResidual<3>::Create(std::move(terms));
   }
 }
 
@@ -78,7 +104,8 @@ constexpr int kLaterPassIterations = 8;
 
 // One Levenberg-Marquardt pass on one channel; returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
-                 int channel, int lobes, int max_iterations, double* x) {
+                 int channel, int lobes, int max_iterations,
+                 double function_tolerance, double* x) {
   // Ceres refuses (and logs) a start whose cost is not finite; such a start
   // (a lobe power overflowing) is left as it is and the caller sees the
   // non-finite cost.
@@ -90,8 +117,9 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   }
   if (!std::isfinite(start_cost)) return 0;
   ceres::Problem problem;
-  problem.AddResidualBlock(MakeChannelCost(lobes, &samples, lut, channel),
-                           nullptr, x);
+  problem.AddResidualBlock(
+      MakeChannelCost(lobes, MakeChannelTerms(samples, lut, channel)), nullptr,
+      x);
   problem.SetParameterLowerBound(x, 0, 0.0);
   problem.SetParameterUpperBound(x, 0, 1e3);
   for (int k = 0; k < lobes; ++k) {
@@ -105,6 +133,7 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   options.max_num_iterations = max_iterations;
+  options.function_tolerance = function_tolerance;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -137,18 +166,38 @@ struct PassResult {
 };
 
 // Fits all three channels' lobes with the given lookup table.
+// With warm_channels, channels 1 and 2 start from channel 0's solution
+// scaled to their data (diffuse by the ratio s of the channel sums, each
+// lobe's C by s^(1/N), so its value scales by s): the channels of a texel
+// share their shape, and a start next to the solution saves iterations.
 PassResult FitLobes(const TexelSamples& samples,
                     const std::vector<glm::dvec3>& t,
-                    const LafortuneFitOptions& options, LafortuneParams* p) {
+                    const LafortuneFitOptions& options, bool warm_channels,
+                    LafortuneParams* p) {
   PassResult out;
   const int lobes = static_cast<int>(p->lobes.size());
   std::vector<double> x(LafortuneChannelSize(lobes));
+  glm::dvec3 sum(0.0);
+  for (const glm::dvec3& y : samples.value) sum += y;
   for (int c = 0; c < 3; ++c) {
     ToArray(*p, c, x.data());
+    if (warm_channels && c > 0 && sum[0] > 0.0 && sum[c] > 0.0) {
+      const double scale = sum[c] / sum[0];
+      ToArray(*p, 0, x.data());
+      x[0] *= scale;
+      for (int k = 0; k < lobes; ++k) {
+        for (int i = 1; i <= 3; ++i) {
+          x[4 * k + i] =
+              std::clamp(x[4 * k + i] * std::pow(scale, 1.0 / x[4 * k + 4]),
+                         -kMaxC, kMaxC);
+        }
+      }
+    }
     std::vector<double> lut(t.size());
     for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
     out.iterations +=
-        SolveChannel(samples, lut, c, lobes, options.max_iterations, x.data());
+        SolveChannel(samples, lut, c, lobes, options.max_iterations,
+                     options.function_tolerance, x.data());
     LafortuneChannelFromArray(x.data(), c, p);
   }
   return out;
@@ -341,8 +390,25 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         samples.value[i] / std::max(samples.l[i].z, 1e-3) - rho_d;
     peak = glm::max(peak, excess);
   }
-  std::vector<LafortuneParams> starts = {PaperStart(lobes, 0.5, 1.0)};
-  if (options.data_driven_start) {
+  // A warm start (the best of a group's children), else the paper's.
+  const LafortuneModel* warm = nullptr;
+  double warm_cost = HUGE_VAL;
+  for (const LafortuneModel* m : options.warm_starts) {
+    if (m == nullptr || static_cast<int>(m->params.lobes.size()) != lobes ||
+        m->lut.color.size() != n_views) {
+      continue;
+    }
+    const double cost =
+        Cost(samples, options.lookup_table ? m->lut.color : t, m->params);
+    if (cost < warm_cost) {
+      warm_cost = cost;
+      warm = m;
+    }
+  }
+  if (warm != nullptr && options.lookup_table) t = warm->lut.color;
+  std::vector<LafortuneParams> starts = {
+      warm != nullptr ? warm->params : PaperStart(lobes, 0.5, 1.0)};
+  if (options.data_driven_start && warm == nullptr) {
     const double mean_peak = std::max((peak.x + peak.y + peak.z) / 3.0, 1e-6);
     LafortuneParams d = PaperStart(lobes, 0.0, std::pow(mean_peak, 0.1));
     d.diffuse = glm::max(0.7 * rho_d, glm::dvec3(0.0));
@@ -351,7 +417,8 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   LafortuneParams best;
   double best_cost = HUGE_VAL;
   for (LafortuneParams p : starts) {
-    out.iterations += FitLobes(samples, t, options, &p).iterations;
+    out.iterations +=
+        FitLobes(samples, t, options, options.warm_channels, &p).iterations;
     const double cost = Cost(samples, t, p);
     if (Finite(p) && cost < best_cost) {
       best_cost = cost;
@@ -399,7 +466,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       later.max_iterations =
           std::min(options.max_iterations, kLaterPassIterations);
       LafortuneParams p = best;
-      out.iterations += FitLobes(samples, t, later, &p).iterations;
+      out.iterations += FitLobes(samples, t, later, false, &p).iterations;
       ++out.alternations;
       if (Finite(p)) best = p;
       if (out.lut_change < options.lut_threshold) break;

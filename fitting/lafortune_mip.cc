@@ -95,51 +95,69 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     rows.push_back(std::move(next));
     sizes.push_back({w2, h2});
   }
-  // Every texel of every level is one job; results land in fixed slots, so
-  // the thread count does not change them.
-  std::vector<std::pair<size_t, size_t>> jobs;
+  // Level by level (a group's fit starts from its children's, which must be
+  // done); within a level every texel is one job. Results land in fixed
+  // slots, so the thread count does not change them.
+  size_t all_jobs = 0;
   for (size_t l = 0; l < rows.size(); ++l) {
     LafortuneLevel level;
     level.width = sizes[l].first;
     level.height = sizes[l].second;
     level.texels.resize(rows[l].size());
-    for (size_t t = 0; t < rows[l].size(); ++t) {
-      level.samples += rows[l][t].size();
-      jobs.emplace_back(l, t);
-    }
+    for (const std::vector<size_t>& r : rows[l]) level.samples += r.size();
+    all_jobs += rows[l].size();
     out.levels.push_back(std::move(level));
   }
-  std::atomic<size_t> next_job{0};
-  std::mutex progress_mutex;
-  int done = 0;
-  std::exception_ptr error;
-  auto worker = [&]() {
-    for (size_t j = next_job++; j < jobs.size(); j = next_job++) {
-      const auto [l, t] = jobs[j];
-      try {
-        out.levels[l].texels[t] =
-            FitTexelRows(table, views, rows[l][t], options);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        if (!error) error = std::current_exception();
-      }
-      std::lock_guard<std::mutex> lock(progress_mutex);
-      ++done;
-      if (options.progress) {
-        options.progress(done, static_cast<int>(jobs.size()));
-      }
-    }
-  };
   int threads = options.threads > 0
                     ? options.threads
                     : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::clamp(threads, 1, 256);
-  std::vector<std::thread> pool;
-  for (int i = 1; i < threads; ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  std::mutex progress_mutex;
+  int done = 0;
+  std::exception_ptr error;
+  for (size_t l = 0; l < rows.size() && !error; ++l) {
+    // The children of each texel of level l (level l - 1's texels in its
+    // group).
+    std::vector<std::vector<const LafortuneModel*>> children(rows[l].size());
+    if (l > 0) {
+      const LafortuneLevel& below = out.levels[l - 1];
+      const int w2 = out.levels[l].width, h2 = out.levels[l].height;
+      for (int y = 0; y < below.height; ++y) {
+        for (int x = 0; x < below.width; ++x) {
+          const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
+          children[y2 * w2 + x2].push_back(
+              &below.texels[y * below.width + x].model);
+        }
+      }
+    }
+    std::atomic<size_t> next_job{0};
+    auto worker = [&]() {
+      for (size_t t = next_job++; t < rows[l].size(); t = next_job++) {
+        try {
+          LafortuneMipOptions texel_options = options;
+          texel_options.fit.warm_starts = children[t];
+          out.levels[l].texels[t] =
+              FitTexelRows(table, views, rows[l][t], texel_options);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(progress_mutex);
+          if (!error) error = std::current_exception();
+        }
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        ++done;
+        if (options.progress) {
+          options.progress(done, static_cast<int>(all_jobs));
+        }
+      }
+    };
+    const int level_threads =
+        std::min(threads, static_cast<int>(rows[l].size()));
+    std::vector<std::thread> pool;
+    for (int i = 1; i < level_threads; ++i) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+  }
   if (error) std::rethrow_exception(error);
-  out.fits = static_cast<int>(jobs.size());
+  out.fits = static_cast<int>(all_jobs);
   out.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count();

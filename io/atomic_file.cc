@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "io/input_error.h"
 
@@ -70,7 +71,8 @@ void WriteFileAtomically(const std::string& path, const std::string& content) {
   }
 }
 
-std::string ReadFileToString(const std::string& path) {
+void ReadFileInChunks(const std::string& path,
+                      const std::function<void(std::string_view)>& consume) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) ThrowReadError(path, errno);
   struct stat info;
@@ -83,13 +85,9 @@ std::string ReadFileToString(const std::string& path) {
     ::close(fd);
     ThrowReadError(path, EISDIR);
   }
-  std::string content;
-  if (S_ISREG(info.st_mode) && info.st_size > 0) {
-    content.reserve(static_cast<size_t>(info.st_size));
-  }
-  char buffer[1 << 16];
+  std::vector<char> buffer(1 << 20);
   while (true) {
-    const ssize_t got = ::read(fd, buffer, sizeof(buffer));
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
     if (got < 0) {
       if (errno == EINTR) continue;
       const int error = errno;
@@ -97,9 +95,20 @@ std::string ReadFileToString(const std::string& path) {
       ThrowReadError(path, error);
     }
     if (got == 0) break;
-    content.append(buffer, static_cast<size_t>(got));
+    try {
+      consume(std::string_view(buffer.data(), static_cast<size_t>(got)));
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
   }
   ::close(fd);
+}
+
+std::string ReadFileToString(const std::string& path) {
+  std::string content;
+  ReadFileInChunks(path,
+                   [&](std::string_view chunk) { content.append(chunk); });
   return content;
 }
 

@@ -3,7 +3,9 @@
 // a half-written file and never clobbers an earlier good one.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 namespace clothfit {
 
@@ -13,5 +15,12 @@ void WriteFileAtomically(const std::string& path, const std::string& content);
 
 // Reads a whole file. Throws InputError naming the path when it cannot.
 std::string ReadFileToString(const std::string& path);
+
+// Reads a file piece by piece (1 MiB at a time), handing each piece to
+// `consume` (pieces split lines anywhere); a file of any size in constant
+// memory. Throws InputError naming the path when it cannot be read;
+// exceptions from `consume` pass through.
+void ReadFileInChunks(const std::string& path,
+                      const std::function<void(std::string_view)>& consume);
 
 }  // namespace clothfit

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -66,6 +67,30 @@ constexpr std::array<const char*, kColumnCount> kColumnNames = {
     "sigma",   "sigma_r",  "sigma_g",  "sigma_b", "weight", "alpha", "s",
     "t",       "normal_x", "normal_y", "normal_z"};
 
+// The number a field spells (decimal, as strtod: optional sign, exponent,
+// inf/nan); NaN when it spells none. std::from_chars does the common case
+// without allocating; values beyond the double range take strtod's answer
+// (+-inf, or a subnormal / 0).
+std::optional<double> ParseNumber(std::string_view field) {
+  std::string_view digits = field;
+  if (digits.size() > 1 && digits[0] == '+' && digits[1] != '+' &&
+      digits[1] != '-') {
+    digits.remove_prefix(1);  // from_chars takes no '+'
+  }
+  double number = 0.0;
+  const char* last = digits.data() + digits.size();
+  const auto [end, error] = std::from_chars(digits.data(), last, number);
+  if (end != last ||
+      (error != std::errc() && error != std::errc::result_out_of_range)) {
+    return std::nullopt;
+  }
+  if (error == std::errc::result_out_of_range) {
+    const std::string text(field);
+    return std::strtod(text.c_str(), nullptr);
+  }
+  return number;
+}
+
 std::string ColumnLabel(int column) {
   return std::string("column '") + kColumnNames[column] + "'";
 }
@@ -81,6 +106,10 @@ class TableParser {
       : name_(name), options_(options) {}
 
   ReadTableResult Parse(std::string_view text);
+  // Line by line (without its '\n'), then Finish: what Parse does, for a
+  // file read piece by piece.
+  void Line(std::string_view content);
+  ReadTableResult Finish();
 
  private:
   [[noreturn]] void Fail(int line, int column, const std::string& problem) {
@@ -101,6 +130,8 @@ class TableParser {
   const ReadTableOptions& options_;
   bool has_values_ = true;  // false: a directions-only table
   ReadTableResult result_;
+  int line_ = 0;         // lines seen
+  int header_line_ = 0;  // line of the header, 0 before it
   bool radians_ = false;
   int quantity_line_ = 0;
   int units_line_ = 0;
@@ -289,19 +320,18 @@ void TableParser::ParseRow(std::string_view text, int line) {
   for (size_t i = 0; i < fields.size(); ++i) {
     const int column = column_of_field[i];
     const int field_column = static_cast<int>(i) + 1;
-    const std::string field(Trim(fields[i]));
+    const std::string_view field = Trim(fields[i]);
     if (field.empty()) {
       Fail(line, field_column,
            ColumnLabel(column) + ": empty field (expected a number)");
     }
-    char* end = nullptr;
-    errno = 0;
-    const double number = std::strtod(field.c_str(), &end);
-    if (end != field.c_str() + field.size()) {
+    const std::optional<double> parsed = ParseNumber(field);
+    if (!parsed) {
       Fail(line, field_column,
            ColumnLabel(column) + ": cannot parse " + Quote(field) +
                " as a number");
     }
+    const double number = *parsed;
     if (!std::isfinite(number)) {
       Fail(line, field_column,
            ColumnLabel(column) + ": " + Quote(field) +
@@ -417,44 +447,50 @@ void TableParser::ParseRow(std::string_view text, int line) {
   result_.table.rows.push_back(row);
 }
 
-ReadTableResult TableParser::Parse(std::string_view text) {
+void TableParser::Line(std::string_view content) {
+  ++line_;
   // A UTF-8 byte order mark (spreadsheet exports) is not part of the data.
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  if (line_ == 1 && content.substr(0, 3) == "\xEF\xBB\xBF") {
+    content.remove_prefix(3);
+  }
+  if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
+  const std::string_view trimmed = Trim(content);
+  if (trimmed.empty()) return;
+  if (trimmed.front() == '#') {
+    // Before the header: metadata; after it: a comment.
+    if (header_line_ == 0) ParseMetadata(trimmed.substr(1), line_);
+    return;
+  }
+  if (header_line_ == 0) {
+    ParseHeader(content, line_);
+    header_line_ = line_;
+    return;
+  }
+  if (!options_.skip_invalid) {
+    ParseRow(content, line_);
+    return;
+  }
+  try {
+    ParseRow(content, line_);
+  } catch (const InputError& error) {
+    if (result_.skipped == 0) result_.first_skip_reason = error.what();
+    ++result_.skipped;
+  }
+}
 
-  int header_line = 0;
-  int line = 0;
+ReadTableResult TableParser::Parse(std::string_view text) {
   size_t start = 0;
   while (start <= text.size()) {
     size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
-    std::string_view content = text.substr(start, end - start);
+    Line(text.substr(start, end - start));
     start = end + 1;
-    ++line;
-    if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
-    const std::string_view trimmed = Trim(content);
-    if (trimmed.empty()) continue;
-    if (trimmed.front() == '#') {
-      // Before the header: metadata; after it: a comment.
-      if (header_line == 0) ParseMetadata(trimmed.substr(1), line);
-      continue;
-    }
-    if (header_line == 0) {
-      ParseHeader(content, line);
-      header_line = line;
-      continue;
-    }
-    if (!options_.skip_invalid) {
-      ParseRow(content, line);
-      continue;
-    }
-    try {
-      ParseRow(content, line);
-    } catch (const InputError& error) {
-      if (result_.skipped == 0) result_.first_skip_reason = error.what();
-      ++result_.skipped;
-    }
   }
+  return Finish();
+}
 
+ReadTableResult TableParser::Finish() {
+  const int header_line = header_line_;
   if (header_line == 0) {
     Fail(0, 0,
          "no header (expected a line of column names such as "
@@ -522,7 +558,28 @@ void MeasurementTable::SetMeta(const std::string& key,
 
 ReadTableResult ReadTable(const std::string& path,
                           const ReadTableOptions& options) {
-  return ParseTable(ReadFileToString(path), path, options);
+  // Piece by piece: the file's text is never held whole (a 1 GB table
+  // needs only its rows' memory).
+  TableParser parser(path, options);
+  std::string pending;  // a line split across pieces
+  ReadFileInChunks(path, [&](std::string_view chunk) {
+    size_t start = 0;
+    while (true) {
+      const size_t end = chunk.find('\n', start);
+      if (end == std::string_view::npos) break;
+      if (pending.empty()) {
+        parser.Line(chunk.substr(start, end - start));
+      } else {
+        pending.append(chunk.substr(start, end - start));
+        parser.Line(pending);
+        pending.clear();
+      }
+      start = end + 1;
+    }
+    pending.append(chunk.substr(start));
+  });
+  parser.Line(pending);  // the last line (empty after a final '\n')
+  return parser.Finish();
 }
 
 ReadTableResult ParseTable(const std::string& text, const std::string& name,

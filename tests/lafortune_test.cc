@@ -232,6 +232,25 @@ TEST(LafortuneGonio, LookupTableLowersTheViewColourErrorByAtLeast30Percent) {
   EXPECT_LT(rms_with, 0.97 * rms_without);
 }
 
+// A group's fit starts from the best of its children's: the start next to
+// the solution (here the truth itself among a poor candidate) saves
+// iterations, and candidates with another lobe count are ignored.
+TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
+  const std::vector<glm::dvec3> views = Hemisphere(6);
+  const LafortuneModel truth = TruthModel(views);
+  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  LafortuneModel poor = truth, one_lobe = truth;
+  poor.params.diffuse *= 3.0;
+  one_lobe.params.lobes.resize(1);
+  LafortuneFitOptions cold, warm;
+  warm.warm_starts = {&poor, &truth, &one_lobe};
+  const LafortuneFitResult a = FitLafortune(samples, cold);
+  const LafortuneFitResult b = FitLafortune(samples, warm);
+  ASSERT_TRUE(b.usable);
+  EXPECT_LT(b.iterations, a.iterations / 2);
+  EXPECT_LE(b.relative_rms, 1e-9);
+}
+
 TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
@@ -305,14 +324,22 @@ TEST(LafortuneMip, GroupFitEqualsDirectFitOfPooledSamples) {
     EXPECT_EQ(level.samples, table.rows.size());
   }
   // Level-1 texel (1, 0) pools level-0 texels x 2..3, y 0..1: fitting
-  // those rows directly gives the same model.
+  // those rows directly (from the same starts: the group's fit starts from
+  // the best of its children's) gives the same model.
   std::vector<size_t> rows;
   for (size_t i = 0; i < table.rows.size(); ++i) {
     const TableRow& row = table.rows[i];
     if (row.s >= 2 && row.t <= 1) rows.push_back(i);
   }
+  LafortuneFitOptions direct_options = options.fit;
+  for (int y = 0; y <= 1; ++y) {
+    for (int x = 2; x <= 3; ++x) {
+      direct_options.warm_starts.push_back(
+          &r.levels[0].texels[y * 4 + x].model);
+    }
+  }
   const LafortuneFitResult direct = FitLafortune(
-      CollectSamples(table, ViewIndex(table), rows, nullptr), options.fit);
+      CollectSamples(table, ViewIndex(table), rows, nullptr), direct_options);
   const TexelFit& group = r.levels[1].texels[0 * 2 + 1];
   EXPECT_EQ(group.samples, static_cast<int>(rows.size()));
   double rms = 0.0, relative_rms = 0.0;

@@ -553,6 +553,58 @@ void ExpectSameTable(const MeasurementTable& a, const MeasurementTable& b) {
   }
 }
 
+// A file is read piece by piece (1 MiB): lines split across pieces, CRLF
+// endings and a missing final newline read as from one string, and a bad
+// row past the first piece is named by its line.
+TEST(TableTest, ReadingInPiecesEqualsParsingTheWholeText) {
+  std::string text =
+      "# quantity: cosine_weighted\r\nwi_x,wi_y,wi_z,wo_x,wo_y,"
+      "wo_z,r,g,b,s,t\r\n";
+  int rows = 0;
+  while (text.size() < 2500000) {
+    const double x = 0.001 * (rows % 997);
+    text += std::to_string(x) + ",0.25,0.9," + std::to_string(-x) +
+            ",0.125,0.8,1.5,2.5," + std::to_string(rows) + "," +
+            std::to_string(rows % 7) + ",3\r\n";
+    ++rows;
+  }
+  text += "0.5,0.5,0.5,0.1,0.2,0.3,1,2,3,4,5";  // no final newline
+  ++rows;
+  const fs::path path = TestDir() / "big.csv";
+  WriteText(path, text);
+  const MeasurementTable read = ReadTable(path.string()).table;
+  ASSERT_EQ(read.rows.size(), static_cast<size_t>(rows));
+  ExpectSameTable(read, ParseTable(text, "mem").table);
+  EXPECT_EQ(read.rows.back().source_line, rows + 2);
+
+  WriteText(path, text + "\n0.5,0.5,0.5,0.1,0.2,0.3,1,2,oops,4,5\n");
+  try {
+    ReadTable(path.string());
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what())
+                  .find(path.string() + ":" + std::to_string(rows + 3) + ":9:"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(TableTest, NumbersAsStrtodSpellsThem) {
+  const MeasurementTable t =
+      ParseTable("theta_i,phi_i,theta_o,phi_o,value\n+1.5,2,3e0,4,1e-320\n",
+                 "data.csv")
+          .table;
+  EXPECT_NEAR(t.rows[0].wi.z, std::cos(1.5 * kPi / 180.0), 1e-15);
+  EXPECT_GT(t.rows[0].value.x, 0.0);  // subnormal, kept
+  EXPECT_LT(t.rows[0].value.x, 1e-300);
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value\n1,2,3,4,1e999\n",
+              {"data.csv:2:5:", "not a finite number"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value\n1,2,3,4,++1\n",
+              {"data.csv:2:5:", "cannot parse"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value\n1,2,3,4,banana\n",
+              {"data.csv:2:5:", "cannot parse"});
+}
+
 TEST(TableTest, RoundTripAngles) {
   const MeasurementTable table = SampleTable(DirectionColumns::kAngles);
   const fs::path path = TestDir() / "angles.csv";
