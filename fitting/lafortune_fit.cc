@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <unordered_map>
 
@@ -214,6 +215,29 @@ double Cost(const TexelSamples& s, const std::vector<glm::dvec3>& t,
   return std::isfinite(cost) ? cost : HUGE_VAL;
 }
 
+// Every stride-th sample of a scrambled order (Knuth's multiplicative hash
+// of the index), so that the subset spreads over all views and lights;
+// empty when stride <= 1 or the texel has at most kMinSubsampled samples.
+constexpr size_t kMinSubsampled = 1024;
+TexelSamples Subsample(const TexelSamples& samples, int stride) {
+  TexelSamples sub;
+  if (stride <= 1 || samples.size() <= kMinSubsampled) return sub;
+  sub.normal = samples.normal;
+  sub.views = samples.views;
+  sub.view_alpha = samples.view_alpha;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const uint64_t hash = (static_cast<uint64_t>(i) * 2654435761u) >> 7;
+    if (hash % static_cast<uint64_t>(stride) != 0) continue;
+    sub.l.push_back(samples.l[i]);
+    sub.v.push_back(samples.v[i]);
+    sub.value.push_back(samples.value[i]);
+    sub.weight.push_back(samples.weight[i]);
+    sub.view.push_back(samples.view[i]);
+    sub.count_rows.push_back(samples.count_rows[i]);
+  }
+  return sub;
+}
+
 bool Finite(const LafortuneParams& p) {
   bool ok = std::isfinite(glm::dot(p.diffuse, glm::dvec3(1.0)));
   for (const LafortuneLobe& l : p.lobes) {
@@ -416,9 +440,13 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   }
   LafortuneParams best;
   double best_cost = HUGE_VAL;
+  // The first pass (from a start far from the solution, most of the
+  // iterations) runs on a subsample; the later passes refine on all samples.
+  const TexelSamples sub = Subsample(samples, options.first_pass_subsample);
+  const TexelSamples& first = sub.size() > 0 ? sub : samples;
   for (LafortuneParams p : starts) {
     out.iterations +=
-        FitLobes(samples, t, options, options.warm_channels, &p).iterations;
+        FitLobes(first, t, options, options.warm_channels, &p).iterations;
     const double cost = Cost(samples, t, p);
     if (Finite(p) && cost < best_cost) {
       best_cost = cost;
