@@ -9,6 +9,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/model_selection.h"
 #include "fitting/thread_fit.h"
+#include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "models/presets.h"
 
@@ -142,7 +143,7 @@ int RunFit(int argc, char** argv) {
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
-  args.Required("out");
+  CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args);
   ReadTableOptions read_options;
   read_options.skip_invalid = args.Has("skip-invalid");

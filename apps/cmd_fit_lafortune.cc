@@ -11,6 +11,7 @@
 #include "apps/commands.h"
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "io/atomic_file.h"
 #include "io/image_stack.h"
 #include "io/param_mipmap.h"
 
@@ -74,6 +75,7 @@ int RunFitLafortune(int argc, char** argv) {
   if (args.Has("data") == args.Has("stack")) {
     args.Fail("give exactly one of --data and --stack");
   }
+  CheckWritable(out_path);  // before the fit, not after
   LafortuneMipOptions options;
   const long lobes = args.GetInt("lobes");
   if (lobes < 0 || lobes > 3) args.Fail("option '--lobes': must be 0 to 3");

@@ -43,22 +43,34 @@ int WriteAll(int fd, const std::string& content) {
   return 0;
 }
 
-}  // namespace
-
-void WriteFileAtomically(const std::string& path, const std::string& content) {
+// Creates a new temporary file beside `path` (so that rename() stays within
+// one file system and is atomic); returns its descriptor, sets *temp_path.
+int CreateTempBeside(const std::string& path, std::string* temp_path) {
   if (path.empty()) ThrowWriteError(path, ENOENT);
-  // The temporary file lives beside the target so that rename() stays within
-  // one file system and is atomic.
-  std::string temp_path;
   int fd = -1;
   for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
-    temp_path = path + ".tmp." + std::to_string(::getpid()) + "." +
-                std::to_string(temp_counter.fetch_add(1));
-    fd = ::open(temp_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
+    *temp_path = path + ".tmp." + std::to_string(::getpid()) + "." +
+                 std::to_string(temp_counter.fetch_add(1));
+    fd = ::open(temp_path->c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
                 0666);
     if (fd < 0 && errno != EEXIST) ThrowWriteError(path, errno);
   }
   if (fd < 0) ThrowWriteError(path, EEXIST);
+  return fd;
+}
+
+}  // namespace
+
+void CheckWritable(const std::string& path) {
+  std::string temp_path;
+  const int fd = CreateTempBeside(path, &temp_path);
+  ::close(fd);
+  ::unlink(temp_path.c_str());
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& content) {
+  std::string temp_path;
+  const int fd = CreateTempBeside(path, &temp_path);
 
   int error = WriteAll(fd, content);
   if (::close(fd) != 0 && error == 0) error = errno;

@@ -13,6 +13,12 @@ namespace clothfit {
 // and the system's reason when the file cannot be written.
 void WriteFileAtomically(const std::string& path, const std::string& content);
 
+// Throws InputError ("path: cannot write: reason") unless a file can be
+// created beside `path` (its directory exists and is writable): a command
+// checks its output before a long computation, not after. Leaves nothing
+// behind.
+void CheckWritable(const std::string& path);
+
 // Reads a whole file. Throws InputError naming the path when it cannot.
 std::string ReadFileToString(const std::string& path);
 

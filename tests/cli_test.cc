@@ -515,6 +515,15 @@ TEST(CliTest, OutputInsideMissingDirectory) {
                  {"synth", "--preset", "velvet", "--rows", "10", "--out", out},
                  {out});
   ExpectBadInput(dir, {"preset", "velvet", "--out", out}, {out});
+  // Fits check their output before fitting (nothing printed, exit 2).
+  const std::string data = (dir / "D.csv").string();
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--out", out},
+                 {out, "cannot write"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", data, "--out",
+                  (dir / "no_such_dir" / "L.exr").string()},
+                 {"L.exr", "cannot write"});
   EXPECT_FALSE(fs::exists(dir / "no_such_dir"));
 }
 
