@@ -5,10 +5,12 @@
 // trade-off over lobe count and iteration caps on a smaller grid.
 //   build/benchmarks/lafortune_benchmark --benchmark_repetitions=3
 //       --benchmark_report_aggregates_only=true      (one command line)
-// Counters: fits/s, mean relative RMS error of level 0, peak RSS (MB).
+// Counters: fits/s, mean relative RMS error of level 0 (per sample, and
+// of the per-view colour), solver iterations per fit, peak RSS (MB).
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
+#include <cmath>
 #include <map>
 
 #include "data_synthetic/virtual_gonio.h"
@@ -36,18 +38,27 @@ double PeakMegabytes() {
 
 void Run(benchmark::State& state, int texels, const LafortuneMipOptions& o) {
   const MeasurementTable& table = GonioTable(texels);
-  double error = 0.0;
+  double error = 0.0, view_error = 0.0, iterations = 0.0;
   int fits = 0;
   for (auto _ : state) {
     const LafortuneMipResult r = FitLafortuneMip(table, o);
     fits = r.fits;
-    error = 0.0;
-    for (const TexelFit& t : r.levels[0].texels) error += t.relative_rms;
-    error /= r.levels[0].texels.size();
+    error = view_error = iterations = 0.0;
+    for (const TexelFit& t : r.levels[0].texels) {
+      error += t.relative_rms;
+      view_error += t.view_relative_rms;
+      iterations += t.iterations;
+    }
+    const double n = static_cast<double>(r.levels[0].texels.size());
+    error /= n;
+    view_error /= n;
+    iterations /= n;
   }
   state.counters["fits_per_s"] =
       benchmark::Counter(fits, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["rel_rms"] = error;
+  state.counters["view_rel_rms"] = view_error;
+  state.counters["iterations"] = iterations;
   state.counters["peak_MB"] = PeakMegabytes();
 }
 
@@ -60,18 +71,37 @@ void BM_PaperWorkload(benchmark::State& state) {
 }
 BENCHMARK(BM_PaperWorkload)->Unit(benchmark::kSecond)->Iterations(1);
 
-// Speed against accuracy: lobes K and the iteration cap, 8 x 8 texels.
-void BM_LobesAndIterations(benchmark::State& state) {
+// Speed against accuracy, 8 x 8 texels (level 0, 64 fits, both cores):
+// lobes K, the lookup table, and the solver's function tolerance (1e-6 is
+// Ceres' default, 1e-5 clothfit's).
+void BM_LobesLutTolerance(benchmark::State& state) {
   LafortuneMipOptions o;
   o.fit.lobes = static_cast<int>(state.range(0));
-  o.fit.max_iterations = static_cast<int>(state.range(1));
-  o.fit.lookup_table = state.range(2) != 0;
+  o.fit.lookup_table = state.range(1) != 0;
+  o.fit.function_tolerance =
+      std::pow(10.0, -static_cast<double>(state.range(2)));
   o.mip = false;
   Run(state, 8, o);
 }
-BENCHMARK(BM_LobesAndIterations)
-    ->ArgsProduct({{0, 1, 2, 3}, {5, 50}, {0, 1}})
-    ->ArgNames({"lobes", "iters", "lut"})
+BENCHMARK(BM_LobesLutTolerance)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}, {4, 5, 6}})
+    ->ArgNames({"lobes", "lut", "ftol_exp"})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// The first-pass subsample and the iteration cap per pass, K = 2 with the
+// lookup table.
+void BM_SubsampleAndIterationCap(benchmark::State& state) {
+  LafortuneMipOptions o;
+  o.fit.lobes = 2;
+  o.fit.first_pass_subsample = static_cast<int>(state.range(0));
+  o.fit.max_iterations = static_cast<int>(state.range(1));
+  o.mip = false;
+  Run(state, 8, o);
+}
+BENCHMARK(BM_SubsampleAndIterationCap)
+    ->ArgsProduct({{1, 4, 16}, {10, 50}})
+    ->ArgNames({"subsample", "max_iters"})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

@@ -500,6 +500,14 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       if (out.lut_change < options.lut_threshold) break;
     }
   }
+  // A first pass on a subsample is refined on all samples when no later
+  // pass did (no lookup table, or a single alternation): a lobe fitted to a
+  // quarter of the samples alone can be narrow and wrong between them.
+  if (&first != &samples && out.alternations == 1) {
+    LafortuneParams p = best;
+    out.iterations += FitLobes(samples, t, options, false, &p).iterations;
+    if (Finite(p)) best = p;
+  }
   out.model.params = best;
   out.model.lut.color = t;
   double se = 0.0, ss = 0.0;
