@@ -3,6 +3,7 @@
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -317,6 +318,45 @@ MeasurementTable SpatialTable(int width, int height, int n) {
     }
   }
   return table;
+}
+
+// Texel (0, 0) misses every row of one view (an empty view); texel (1, 0)
+// is fully transparent (alpha 0, value 0 everywhere). Both fit to finite
+// results: the empty view keeps T = 1 (alpha 1: nothing measured), the
+// transparent texel is a zero model with alpha 0 at every view.
+TEST(LafortuneMip, EmptyViewsAndTransparentTexelsGiveClearResults) {
+  MeasurementTable table = SpatialTable(2, 1, 3);
+  table.has_alpha = true;
+  const glm::dvec3 missing_view = table.rows[0].wo;
+  std::vector<TableRow> kept;
+  for (TableRow r : table.rows) {
+    if (r.s == 0 && r.wo == missing_view) continue;
+    if (r.s == 1) {
+      r.value = glm::dvec3(0.0);
+      r.alpha = 0.0;
+    }
+    kept.push_back(r);
+  }
+  table.rows = kept;
+  const LafortuneMipResult r = FitLafortuneMip(table, LafortuneMipOptions());
+  const TexelFit& holed = r.levels[0].texels[0];
+  const TexelFit& clear = r.levels[0].texels[1];
+  ASSERT_TRUE(holed.usable) << holed.message;
+  ASSERT_TRUE(clear.usable) << clear.message;
+  const size_t v0 =
+      std::find(r.views.begin(), r.views.end(), missing_view) - r.views.begin();
+  ASSERT_LT(v0, r.views.size());
+  EXPECT_EQ(holed.model.lut.color[v0], glm::dvec3(1.0));
+  EXPECT_EQ(holed.model.lut.alpha[v0], 1.0);
+  EXPECT_TRUE(std::isfinite(holed.relative_rms));
+  for (size_t v = 0; v < r.views.size(); ++v) {
+    EXPECT_EQ(clear.model.lut.alpha[v], 0.0);
+    for (const glm::dvec3& l : r.views) {
+      const glm::dvec3 m = LafortuneRho(clear.model, l, r.views[v]);
+      EXPECT_TRUE(std::isfinite(m.x + m.y + m.z));
+      EXPECT_LT(glm::length(m), 1e-9);
+    }
+  }
 }
 
 TEST(LafortuneMip, GroupFitEqualsDirectFitOfPooledSamples) {
