@@ -11,9 +11,11 @@
 
 namespace clothfit {
 
+int RunBench(int argc, char** argv);
 int RunEval(int argc, char** argv);
 int RunFit(int argc, char** argv);
 int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
+int RunPlot(int argc, char** argv);
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);

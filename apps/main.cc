@@ -16,8 +16,10 @@ struct Command {
 };
 
 const Command kCommands[] = {
+    {"bench", clothfit::RunBench, "speed against accuracy of every fitter"},
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
+    {"plot", clothfit::RunPlot, "polar plots: measured values against a model"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},

@@ -11,11 +11,13 @@
 #include <glm/geometric.hpp>
 #include <initializer_list>
 #include <iterator>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.h"
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "io/table.h"
@@ -659,6 +661,71 @@ TEST(CliTest, LafortuneFromVirtualGonioWritesParameterMipmap) {
 
 // The same through an image stack: synth --gonio --stack writes one EXR
 // per (light, view) pair and a manifest; fit --stack reads them back.
+// clothfit bench --quick: seconds; its CSV parses (a row per configuration
+// with finite times and errors, one default per model), the charts and the
+// summary are written.
+TEST(CliTest, BenchQuickWritesCsvChartsAndSummary) {
+  const fs::path dir = TestDir();
+  const std::string out = (dir / "bench").string();
+  const RunResult r =
+      RunClothfit(dir, {"bench", "--quick", "--repeats", "2", "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  std::ifstream csv(out + "/bench.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line.rfind("model,config,default,repeats,wall_median_s", 0), 0u);
+  std::map<std::string, int> rows, defaults;
+  while (std::getline(csv, line)) {
+    // model,"config",default,repeats,wall median,min,max,cpu,peak,value
+    // error,param error,size,success
+    const size_t q1 = line.find('"'), q2 = line.find('"', q1 + 1);
+    ASSERT_NE(q2, std::string::npos) << line;
+    const std::string model = line.substr(0, q1 - 1);
+    std::stringstream rest(line.substr(q2 + 2));
+    std::vector<double> v;
+    std::string field;
+    while (std::getline(rest, field, ',')) v.push_back(std::stod(field));
+    ASSERT_EQ(v.size(), 11u) << line;
+    ++rows[model];
+    defaults[model] += v[0] == 1.0;
+    EXPECT_EQ(v[1], 2.0) << line;                             // repeats
+    EXPECT_GT(v[2], 0.0) << line;                             // wall median
+    EXPECT_LE(v[3], v[2]);                                    // min <= median
+    EXPECT_GE(v[4], v[2]);                                    // max >= median
+    EXPECT_TRUE(std::isfinite(v[7]) && v[7] >= 0.0) << line;  // error
+  }
+  for (const char* model : {"thread", "cloth", "lafortune"}) {
+    EXPECT_GE(rows[model], 2) << model;
+    EXPECT_EQ(defaults[model], 1) << model;
+    EXPECT_GT(fs::file_size(out + "/" + model + "_speed_accuracy.png"), 1000u);
+  }
+  EXPECT_GT(fs::file_size(out + "/lafortune_size.png"), 1000u);
+  const std::string summary = ReadFileToString(out + "/summary.md");
+  EXPECT_NE(summary.find("(default)"), std::string::npos);
+  EXPECT_NE(summary.find("--tolerance"), std::string::npos);
+  ExpectBadInput(dir, {"bench", "--quick", "--models", "teapot", "--out", out},
+                 {"teapot"});
+}
+
+TEST(CliTest, PlotDrawsModelAgainstMeasuredRows) {
+  const fs::path dir = TestDir();
+  const std::string table = (dir / "t.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "velvet", "--rows", "3000",
+                              "--out", table})
+                .status,
+            0);
+  const std::string png = (dir / "p.png").string();
+  const RunResult r = RunClothfit(
+      dir, {"plot", "--preset", "velvet", "--data", table, "--incidence-deg",
+            "10,50", "--window-deg", "15", "--out", png});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_GT(fs::file_size(png), 2000u);
+  ExpectBadInput(dir,
+                 {"plot", "--preset", "velvet", "--data", table,
+                  "--incidence-deg", "95", "--out", png},
+                 {"--incidence-deg", "95"});
+}
+
 TEST(CliTest, LafortuneFromImageStack) {
   const fs::path dir = TestDir();
   const std::string manifest = (dir / "stack.csv").string();

@@ -1,0 +1,68 @@
+// clothfit bench: the speed-accuracy sweep of every fitter (issue 7,
+// charts/bench.h).
+#include <sys/stat.h>
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "charts/bench.h"
+#include "io/atomic_file.h"
+
+namespace clothfit {
+
+int RunBench(int argc, char** argv) {
+  CommandArgs args(
+      "bench",
+      "clothfit bench [--quick] [--repeats N] [--models LIST] --out DIR",
+      "Sweeps the knobs that trade speed for accuracy (solver starts, "
+      "iteration caps, lobes, lookup table,\ntolerance, threads, mip levels) "
+      "for each fitter on synthetic data with truth held out from the fit,\n"
+      "and writes DIR/bench.csv (one row per configuration: median wall "
+      "time with min/max, CPU time,\npeak memory, held-out error, parameter "
+      "error), DIR/<model>_speed_accuracy.png (Pareto front,\ndefault "
+      "ringed), DIR/<model>_size.png and DIR/summary.md. docs/bench.md "
+      "explains the numbers.");
+  args.Flag("quick", "small data and few knobs (seconds; the test suite's)");
+  args.Option("repeats", "N", "timed runs per configuration", "3");
+  args.Option("models", "LIST", "comma-separated: thread,cloth,lafortune",
+              "all");
+  args.Option("seed", "S", "random seed of the synthetic data", "1");
+  args.Option("out", "DIR", "output folder (created if missing)");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  const std::string dir = args.Required("out");
+  BenchOptions options;
+  options.quick = args.Has("quick");
+  const long repeats = args.GetInt("repeats");
+  if (repeats < 1 || repeats > 100) {
+    args.Fail("option '--repeats': must be in [1, 100]");
+  }
+  options.repeats = static_cast<int>(repeats);
+  options.seed = static_cast<uint64_t>(args.GetInt("seed"));
+  if (args.Has("models")) {
+    std::stringstream list(args.Get("models"));
+    std::string name;
+    while (std::getline(list, name, ',')) {
+      if (name != "thread" && name != "cloth" && name != "lafortune") {
+        args.Fail("option '--models': unknown model '" + name +
+                  "' (thread, cloth, lafortune)");
+      }
+      options.models.push_back(name);
+    }
+  }
+  ::mkdir(dir.c_str(), 0777);  // an existing folder is fine
+  CheckWritable(dir + "/bench.csv");
+  options.progress = [](const std::string& what) {
+    std::fprintf(stderr, "bench: %s\n", what.c_str());
+  };
+  const std::vector<BenchRow> rows = clothfit::RunBench(options);
+  WriteBenchCsv(rows, dir + "/bench.csv");
+  std::printf("wrote %s/bench.csv\n", dir.c_str());
+  for (const std::string& file : WriteBenchReport(rows, options, dir)) {
+    std::printf("wrote %s\n", file.c_str());
+  }
+  return 0;
+}
+
+}  // namespace clothfit

@@ -1,0 +1,464 @@
+#include "charts/bench.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "charts/chart.h"
+#include "data_synthetic/synthetic_table.h"
+#include "data_synthetic/virtual_gonio.h"
+#include "fitting/cloth_fit.h"
+#include "fitting/lafortune_mip.h"
+#include "fitting/thread_fit.h"
+#include "io/atomic_file.h"
+#include "io/text_util.h"
+#include "models/presets.h"
+
+namespace clothfit {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// What one run of a configuration reports.
+struct Outcome {
+  double value_error = kNaN, param_error = kNaN;
+  bool success = false;
+};
+
+double ProcessCpuSeconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+// Peak resident memory (MB) since the last ResetPeakMemory: Linux's VmHWM,
+// which writing "5" to /proc/self/clear_refs resets. Where that is not
+// allowed the peak is the process's since it started.
+void ResetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
+double PeakMemoryMb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) {
+      return std::atof(line.c_str() + 6) / 1024.0;  // kB
+    }
+  }
+  return kNaN;
+}
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? kNaN : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Runs `run` options.repeats times; the outcome is the last run's (the
+// fits are deterministic).
+BenchRow Measure(const BenchOptions& options,
+                 const std::function<Outcome()>& run) {
+  std::vector<double> wall, cpu;
+  BenchRow row;
+  ResetPeakMemory();
+  Outcome outcome;
+  for (int r = 0; r < std::max(1, options.repeats); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = ProcessCpuSeconds();
+    outcome = run();
+    cpu.push_back(ProcessCpuSeconds() - c0);
+    wall.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+            .count());
+  }
+  row.repeats = static_cast<int>(wall.size());
+  row.wall_median_s = Median(wall);
+  row.wall_min_s = *std::min_element(wall.begin(), wall.end());
+  row.wall_max_s = *std::max_element(wall.begin(), wall.end());
+  row.cpu_median_s = Median(cpu);
+  row.peak_mb = PeakMemoryMb();
+  row.value_error = outcome.value_error;
+  row.param_error = outcome.param_error;
+  row.success = outcome.success;
+  row.size = kNaN;
+  return row;
+}
+
+// Relative RMS of `fitted` against `truth` at the rows' directions.
+double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
+                    const std::vector<TableRow>& rows, Quantity q) {
+  double se = 0.0, ss = 0.0;
+  for (const TableRow& row : rows) {
+    const glm::dvec3 a = Evaluate(fitted, row.wi, row.wo, q);
+    const glm::dvec3 b = Evaluate(truth, row.wi, row.wo, q);
+    se += glm::dot(a - b, a - b);
+    ss += glm::dot(b, b);
+  }
+  return ss > 0.0 ? std::sqrt(se / ss) : kNaN;
+}
+
+// Largest relative difference of the entries whose truth is not 0.
+double LargestRelativeError(const std::vector<double>& fitted,
+                            const std::vector<double>& truth) {
+  double worst = 0.0;
+  for (size_t i = 0; i < truth.size() && i < fitted.size(); ++i) {
+    if (truth[i] == 0.0) continue;
+    worst =
+        std::max(worst, std::abs(fitted[i] - truth[i]) / std::abs(truth[i]));
+  }
+  return worst;
+}
+
+std::vector<double> ThreadValues(const ThreadParams& p) {
+  std::vector<double> x(ThreadParams::kSize);
+  ToArray(p, x.data());
+  return x;
+}
+
+void Say(const BenchOptions& o, const std::string& text) {
+  if (o.progress) o.progress(text);
+}
+
+// Thread: the satin's warp thread, 2 % noise; knobs: solver starts and the
+// iteration cap.
+void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
+  ClothParams satin;
+  GetPreset("polyester_satin_charmeuse", &satin);
+  const ThreadParams truth = satin.threads[0].params;
+  DirectionSampling sampling;
+  sampling.rows = o.quick ? 400 : 4000;
+  sampling.full_sphere_out = true;
+  SynthOptions synth;
+  synth.noise = 0.02;
+  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
+  Random random(o.seed + 1000);
+  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  const std::vector<int> starts =
+      o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
+  const std::vector<int> caps =
+      o.quick ? std::vector<int>{200} : std::vector<int>{10, 50, 200};
+  for (int s : starts) {
+    for (int cap : caps) {
+      const std::string config = "starts=" + std::to_string(s) +
+                                 " max_iterations=" + std::to_string(cap);
+      Say(o, "thread: " + config);
+      ThreadFitOptions fit;
+      fit.solve_starts = s;
+      fit.solver.max_iterations = cap;
+      BenchRow row = Measure(o, [&]() {
+        const ThreadFitResult r = FitThread(table, fit);
+        Outcome out;
+        out.success = r.report.usable && r.report.converged;
+        out.value_error =
+            HeldOutError(r.params, truth, held_out, table.quantity);
+        out.param_error =
+            LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
+        return out;
+      });
+      row.model = "thread";
+      row.config = config;
+      row.group = "starts=" + std::to_string(s);
+      row.is_default = s == ThreadFitOptions().solve_starts &&
+                       cap == SolverOptions().max_iterations;
+      rows->push_back(row);
+    }
+  }
+}
+
+// Cloth: the satin from the generic start, 2 % noise; knobs: the start
+// search and the number of solver starts.
+void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
+  ClothParams truth;
+  GetPreset("polyester_satin_charmeuse", &truth);
+  DirectionSampling sampling;
+  sampling.rows = o.quick ? 300 : 3000;
+  SynthOptions synth;
+  synth.noise = 0.02;
+  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
+  Random random(o.seed + 2000);
+  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  const ClothParams start = GenericClothStart(truth);
+  struct Knobs {
+    bool multi_start;
+    int starts;
+  };
+  std::vector<Knobs> knobs = {{false, 1}, {true, 1}, {true, 2}};
+  if (!o.quick) knobs.push_back({true, 4});
+  for (const Knobs& k : knobs) {
+    const std::string config = std::string("start_search=") +
+                               (k.multi_start ? "on" : "off") +
+                               " starts=" + std::to_string(k.starts);
+    Say(o, "cloth: " + config);
+    ClothFitOptions fit;
+    fit.multi_start = k.multi_start;
+    fit.solve_starts = k.starts;
+    BenchRow row = Measure(o, [&]() {
+      const ClothFitResult r = FitCloth(table, start, fit);
+      Outcome out;
+      out.success = r.report.usable && r.report.converged;
+      out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+      out.param_error =
+          LargestRelativeError(ClothParameterValues(r.params, truth),
+                               ClothParameterValues(truth, truth));
+      return out;
+    });
+    row.model = "cloth";
+    row.config = config;
+    row.group = std::string("start search ") + (k.multi_start ? "on" : "off");
+    const ClothFitOptions defaults;
+    row.is_default = k.multi_start == defaults.multi_start &&
+                     k.starts == defaults.solve_starts;
+    rows->push_back(row);
+  }
+}
+
+// Lafortune: virtual-gonio plain weave; every 4th light held out. Knobs:
+// lobes K, the lookup table, the solver tolerance, threads, mip levels.
+void BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
+  VirtualGonioOptions gonio;
+  gonio.texels = o.quick ? 2 : 8;
+  gonio.directions = o.quick ? 4 : 8;
+  gonio.seed = o.seed;
+  const MeasurementTable all = MeasureVirtualGonio(gonio);
+  // Rows are ordered texel, view, light: the light index is the row index
+  // modulo the number of lights.
+  const size_t lights =
+      static_cast<size_t>(gonio.directions) * gonio.directions;
+  MeasurementTable train = all, test = all;
+  train.rows.clear();
+  test.rows.clear();
+  for (size_t i = 0; i < all.rows.size(); ++i) {
+    (i % lights % 4 == 3 ? test : train).rows.push_back(all.rows[i]);
+  }
+  const ViewIndex test_views(test);
+  std::map<std::pair<int, int>, std::vector<size_t>> test_rows;
+  for (size_t i = 0; i < test.rows.size(); ++i) {
+    test_rows[{test.rows[i].s, test.rows[i].t}].push_back(i);
+  }
+  struct Knobs {
+    int lobes;
+    bool lut;
+    int ftol_exp;
+    int threads;
+    bool mip;
+  };
+  std::vector<Knobs> knobs;
+  for (int k :
+       o.quick ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2, 3}) {
+    for (bool lut : {false, true}) {
+      for (int e : o.quick ? std::vector<int>{5} : std::vector<int>{4, 5, 6}) {
+        knobs.push_back({k, lut, e, 0, false});
+      }
+    }
+  }
+  if (!o.quick) {
+    knobs.push_back({2, true, 5, 1, false});
+    knobs.push_back({2, true, 5, 0, true});
+  }
+  for (const Knobs& k : knobs) {
+    std::ostringstream config;
+    config << "lobes=" << k.lobes << " lut=" << (k.lut ? "on" : "off")
+           << " tolerance=1e-" << k.ftol_exp << " threads="
+           << (k.threads == 0 ? std::string("all") : std::to_string(k.threads))
+           << " mip=" << (k.mip ? "on" : "off");
+    Say(o, "lafortune: " + config.str());
+    LafortuneMipOptions fit;
+    fit.fit.lobes = k.lobes;
+    fit.fit.lookup_table = k.lut;
+    fit.fit.function_tolerance = std::pow(10.0, -k.ftol_exp);
+    fit.threads = k.threads;
+    fit.mip = k.mip;
+    BenchRow row = Measure(o, [&]() {
+      const LafortuneMipResult r = FitLafortuneMip(train, fit);
+      Outcome out;
+      out.success = true;
+      double sum = 0.0;
+      int n = 0;
+      const LafortuneLevel& level = r.levels[0];
+      for (int y = 0; y < level.height; ++y) {
+        for (int x = 0; x < level.width; ++x) {
+          const TexelFit& t = level.texels[y * level.width + x];
+          out.success = out.success && t.usable;
+          double rms = 0.0, rel = 0.0;
+          LafortuneErrors(t.model, test, test_views, test_rows[{x, y}], &rms,
+                          &rel);
+          sum += rel;
+          ++n;
+        }
+      }
+      out.value_error = n ? sum / n : kNaN;
+      return out;
+    });
+    row.model = "lafortune";
+    row.config = config.str();
+    row.group = std::string("lut=") + (k.lut ? "on" : "off");
+    if (k.ftol_exp == 5 && k.threads == 0 && !k.mip) row.size = k.lobes;
+    row.is_default =
+        k.lobes == 2 && k.lut && k.ftol_exp == 5 && k.threads == 0 && !k.mip;
+    rows->push_back(row);
+  }
+}
+
+bool Wanted(const BenchOptions& o, const std::string& model) {
+  return o.models.empty() ||
+         std::find(o.models.begin(), o.models.end(), model) != o.models.end();
+}
+
+std::string Number(double v) {
+  return std::isfinite(v) ? text_util::FormatNumber(v) : "nan";
+}
+
+}  // namespace
+
+std::vector<BenchRow> RunBench(const BenchOptions& options) {
+  std::vector<BenchRow> rows;
+  if (Wanted(options, "thread")) BenchThread(options, &rows);
+  if (Wanted(options, "cloth")) BenchCloth(options, &rows);
+  if (Wanted(options, "lafortune")) BenchLafortune(options, &rows);
+  return rows;
+}
+
+void WriteBenchCsv(const std::vector<BenchRow>& rows, const std::string& path) {
+  std::ostringstream out;
+  out << "model,config,default,repeats,wall_median_s,wall_min_s,wall_max_s,"
+         "cpu_median_s,peak_mb,value_error,param_error,size,success\n";
+  for (const BenchRow& r : rows) {
+    out << r.model << ",\"" << r.config << "\"," << (r.is_default ? 1 : 0)
+        << "," << r.repeats << "," << Number(r.wall_median_s) << ","
+        << Number(r.wall_min_s) << "," << Number(r.wall_max_s) << ","
+        << Number(r.cpu_median_s) << "," << Number(r.peak_mb) << ","
+        << Number(r.value_error) << "," << Number(r.param_error) << ","
+        << Number(r.size) << "," << (r.success ? 1 : 0) << "\n";
+  }
+  WriteFileAtomically(path, out.str());
+}
+
+double ToleranceChoice(const std::vector<BenchRow>& rows, double slack) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const BenchRow& r : rows) {
+    if (std::isfinite(r.size) && std::isfinite(r.value_error)) {
+      best = std::min(best, r.value_error);
+    }
+  }
+  double choice = kNaN;
+  for (const BenchRow& r : rows) {
+    if (std::isfinite(r.size) && r.value_error <= best * (1.0 + slack) &&
+        !(r.size >= choice)) {
+      choice = r.size;
+    }
+  }
+  return choice;
+}
+
+std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
+                                          const BenchOptions& options,
+                                          const std::string& dir) {
+  std::vector<std::string> files;
+  std::vector<std::string> models;
+  for (const BenchRow& r : rows) {
+    if (std::find(models.begin(), models.end(), r.model) == models.end()) {
+      models.push_back(r.model);
+    }
+  }
+  constexpr double kSlack = 0.02;
+  std::ostringstream md;
+  md << "# clothfit bench" << (options.quick ? " (quick)" : "") << "\n\n"
+     << "Each configuration ran " << std::max(1, options.repeats)
+     << " time(s); wall time is the median with [min, max]. Errors are "
+        "against truth held out from the fit (docs/bench.md).\n";
+  for (const std::string& model : models) {
+    std::vector<BenchRow> mine;
+    for (const BenchRow& r : rows) {
+      if (r.model == model) mine.push_back(r);
+    }
+    ChartSpec speed;
+    speed.title = model + ": speed against accuracy";
+    speed.x_label = "wall time per fit run [s]";
+    speed.y_label = "held-out relative RMS error";
+    speed.log_x = true;
+    speed.pareto = true;
+    std::map<std::string, size_t> series_of;
+    for (const BenchRow& r : mine) {
+      auto [it, added] = series_of.emplace(r.group, speed.series.size());
+      if (added) {
+        speed.series.push_back(ChartSeries());
+        speed.series.back().name = r.group;
+        speed.series.back().pareto = true;
+      }
+      ChartPoint p;
+      p.x = r.wall_median_s;
+      p.y = r.value_error;
+      p.highlight = r.is_default;
+      speed.series[it->second].points.push_back(p);
+    }
+    const std::string speed_png = dir + "/" + model + "_speed_accuracy.png";
+    WriteChartPng(speed, speed_png);
+    files.push_back(speed_png);
+
+    md << "\n## " << model << "\n\n![speed against accuracy](" << model
+       << "_speed_accuracy.png)\n";
+    bool sized = false;
+    for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
+    if (sized) {
+      ChartSpec size;
+      size.title = model + ": error against model size";
+      size.x_label = "lobes K";
+      size.y_label = "held-out relative RMS error";
+      std::map<std::string, size_t> size_series;
+      for (const BenchRow& r : mine) {
+        if (!std::isfinite(r.size)) continue;
+        auto [it, added] = size_series.emplace(r.group, size.series.size());
+        if (added) {
+          size.series.push_back(ChartSeries());
+          size.series.back().name = r.group;
+          size.series.back().lines = true;
+        }
+      }
+      for (auto& [group, index] : size_series) {
+        std::vector<BenchRow> in_group;
+        for (const BenchRow& r : mine) {
+          if (std::isfinite(r.size) && r.group == group) in_group.push_back(r);
+        }
+        std::sort(in_group.begin(), in_group.end(),
+                  [](const BenchRow& a, const BenchRow& b) {
+                    return a.size < b.size;
+                  });
+        const double pick = ToleranceChoice(in_group, kSlack);
+        for (const BenchRow& r : in_group) {
+          ChartPoint p;
+          p.x = r.size;
+          p.y = r.value_error;
+          p.highlight = r.size == pick;
+          size.series[index].points.push_back(p);
+        }
+        md << "\n`--tolerance` just above the best error of " << group << " (+"
+           << kSlack * 100 << " %) picks size " << Number(pick) << ".\n";
+      }
+      const std::string size_png = dir + "/" + model + "_size.png";
+      WriteChartPng(size, size_png);
+      files.push_back(size_png);
+      md << "\n![error against model size](" << model << "_size.png)\n";
+    }
+    md << "\n| config | wall median [min, max] s | CPU s | peak MB | "
+          "held-out error | parameter error | converged |\n"
+          "|---|---|---|---|---|---|---|\n";
+    for (const BenchRow& r : mine) {
+      md << "| " << r.config << (r.is_default ? " **(default)**" : "") << " | "
+         << Number(r.wall_median_s) << " [" << Number(r.wall_min_s) << ", "
+         << Number(r.wall_max_s) << "] | " << Number(r.cpu_median_s) << " | "
+         << Number(r.peak_mb) << " | " << Number(r.value_error) << " | "
+         << Number(r.param_error) << " | " << (r.success ? "yes" : "no")
+         << " |\n";
+    }
+  }
+  const std::string summary = dir + "/summary.md";
+  WriteFileAtomically(summary, md.str());
+  files.push_back(summary);
+  return files;
+}
+
+}  // namespace clothfit

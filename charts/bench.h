@@ -1,0 +1,65 @@
+// clothfit bench (issue 7): sweeps over the knobs that trade speed for
+// accuracy for each fitter, on synthetic data whose truth is held out from
+// the fit, timed over repeated runs (median and spread, since the machine
+// is shared), and written as a CSV, PNG charts and a Markdown summary.
+//
+// Errors: `value_error` is the relative RMS of the fitted model against the
+// truth at held-out directions (thread, cloth: the true model's values at
+// directions the fit never saw; Lafortune: virtual-gonio rows of held-out
+// lights, every 4th, which the fit never saw); `param_error` the largest
+// relative error of a free parameter against the truth (NaN where the data
+// have no parameter truth, as the gonio's).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace clothfit {
+
+struct BenchOptions {
+  bool quick = false;  // seconds, for the test suite: small data, few knobs
+  int repeats = 3;     // timed runs per configuration (median, min, max)
+  // Fitters to run ("thread", "cloth", "lafortune"); empty = all.
+  std::vector<std::string> models;
+  uint64_t seed = 1;
+  std::function<void(const std::string&)> progress;  // may be empty
+};
+
+struct BenchRow {
+  std::string model;
+  std::string config;  // "knob=value ..." in a fixed order
+  bool is_default = false;
+  int repeats = 0;
+  double wall_median_s = 0.0, wall_min_s = 0.0, wall_max_s = 0.0;
+  double cpu_median_s = 0.0;  // process CPU time (all threads)
+  double peak_mb = 0.0;       // peak resident memory during the runs
+  double value_error = 0.0;   // held-out relative RMS (see above)
+  double param_error = 0.0;   // NaN where there is no parameter truth
+  double size = 0.0;          // model size (lobes; NaN where not swept)
+  bool success = false;       // the fit reported usable and converged
+  std::string group;          // series of the charts (e.g. "lut=on")
+};
+
+std::vector<BenchRow> RunBench(const BenchOptions& options);
+
+// One row per configuration; throws InputError when it cannot be written.
+void WriteBenchCsv(const std::vector<BenchRow>& rows, const std::string& path);
+
+// Per model: `<dir>/<model>_speed_accuracy.png` (log wall time against the
+// held-out error, Pareto front, default ringed) and, where a size was
+// swept, `<dir>/<model>_size.png` (error against model size, the size
+// `--tolerance` picks ringed); then `<dir>/summary.md`. Returns the files
+// written.
+std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
+                                          const BenchOptions& options,
+                                          const std::string& dir);
+
+// The smallest size whose error is within `slack` (relative) of the best
+// error among the rows of one model and group: the model `--tolerance`
+// would choose with the tolerance set just above the best reachable error.
+// NaN when no row has a size.
+double ToleranceChoice(const std::vector<BenchRow>& rows, double slack);
+
+}  // namespace clothfit

@@ -1,0 +1,58 @@
+// Charts as PNG (drawn with OpenCV; OpenCV stays in chart.cc): scatter and
+// line charts with optional log axes and a Pareto front, and polar plots of
+// a BRDF slice. Every file is written atomically (io/atomic_file.h).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace clothfit {
+
+struct ChartPoint {
+  double x = 0.0, y = 0.0;
+  std::string label;       // drawn beside the point when not empty
+  bool highlight = false;  // ringed (e.g. the default configuration)
+};
+
+struct ChartSeries {
+  std::string name;  // legend
+  std::vector<ChartPoint> points;
+  bool lines = false;  // join the points in order
+  // Part of the Pareto front's point set (fastest at each error level).
+  bool pareto = false;
+};
+
+struct ChartSpec {
+  std::string title, x_label, y_label;
+  bool log_x = false, log_y = false;
+  std::vector<ChartSeries> series;
+  // Mark the Pareto front (smallest y for every x and below) over the
+  // points of the series with pareto = true.
+  bool pareto = false;
+  int width = 900, height = 600;
+};
+
+// Indices (series, point) of the Pareto-optimal points among the series
+// with pareto = true: no other point has both x <= and y <= with one
+// strictly smaller. Sorted by x.
+std::vector<std::pair<int, int>> ParetoFront(const ChartSpec& spec);
+
+// Throws InputError when the file cannot be written. Non-finite points (and
+// non-positive ones on a log axis) are left out and counted in the title.
+void WriteChartPng(const ChartSpec& spec, const std::string& path);
+
+// One panel of a polar plot: a slice of a BRDF in the plane of incidence,
+// angle = theta_o in degrees in [-90, 90] (negative: the side of the light),
+// radius = value.
+struct PolarPanel {
+  std::string title;
+  std::vector<double> measured_angle_deg, measured_value;  // dots
+  std::vector<double> model_angle_deg, model_value;        // a curve
+  double incidence_deg = 0.0;                              // an arrow
+};
+
+// Panels side by side, a common radial scale.
+void WritePolarPlotPng(const std::vector<PolarPanel>& panels,
+                       const std::string& title, const std::string& path);
+
+}  // namespace clothfit

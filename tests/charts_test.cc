@@ -1,0 +1,88 @@
+// Charts and the bench's bookkeeping (charts/): the Pareto front, the
+// tolerance choice, and PNG files that decode.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "charts/bench.h"
+#include "charts/chart.h"
+#include "io/atomic_file.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+ChartPoint P(double x, double y) {
+  ChartPoint p;
+  p.x = x;
+  p.y = y;
+  return p;
+}
+
+ChartSpec TwoSeries() {
+  ChartSpec spec;
+  spec.pareto = true;
+  ChartSeries a, b;
+  a.pareto = b.pareto = true;
+  // (time, error): (1, 5) (2, 3) (4, 4) | (3, 1) (5, 2) (0.5, 9)
+  a.points = {P(1, 5), P(2, 3), P(4, 4)};
+  b.points = {P(3, 1), P(5, 2), P(0.5, 9)};
+  spec.series = {a, b};
+  return spec;
+}
+
+TEST(ChartTest, ParetoFrontKeepsOnlyUndominatedPointsByTime) {
+  const std::vector<std::pair<int, int>> front = ParetoFront(TwoSeries());
+  const std::vector<std::pair<int, int>> expected = {
+      {1, 2}, {0, 0}, {0, 1}, {1, 0}};  // x = 0.5, 1, 2, 3
+  EXPECT_EQ(front, expected);
+}
+
+TEST(ChartTest, ToleranceChoiceIsTheSmallestSizeNearTheBest) {
+  std::vector<BenchRow> rows(4);
+  const double errors[] = {0.9, 0.5, 0.41, 0.40};
+  for (int k = 0; k < 4; ++k) {
+    rows[k].size = k;
+    rows[k].value_error = errors[k];
+  }
+  EXPECT_EQ(ToleranceChoice(rows, 0.05), 2.0);  // 0.41 <= 0.40 * 1.05
+  EXPECT_EQ(ToleranceChoice(rows, 0.0), 3.0);
+  EXPECT_EQ(ToleranceChoice(rows, 0.3), 1.0);  // 0.5 <= 0.52 < 0.9
+  rows.clear();
+  EXPECT_TRUE(std::isnan(ToleranceChoice(rows, 0.1)));
+}
+
+bool IsPng(const std::string& path) {
+  const std::string bytes = ReadFileToString(path);
+  return bytes.size() > 1000 && bytes.compare(1, 3, "PNG") == 0;
+}
+
+TEST(ChartTest, ChartsAreWrittenWithAndWithoutDrawablePoints) {
+  const fs::path dir = testing_util::FreshTestDir("charts_test_");
+  ChartSpec spec = TwoSeries();
+  spec.log_x = true;
+  spec.series[0].points.push_back(P(-1.0, 2.0));  // not on a log axis
+  spec.series[0].points.push_back(P(NAN, 2.0));
+  const std::string path = (dir / "c.png").string();
+  WriteChartPng(spec, path);
+  EXPECT_TRUE(IsPng(path));
+  ChartSpec empty;
+  WriteChartPng(empty, (dir / "e.png").string());
+  EXPECT_TRUE(IsPng((dir / "e.png").string()));
+  PolarPanel panel;
+  panel.model_angle_deg = {-10, 0, 10};
+  panel.model_value = {1, 2, 1};
+  panel.measured_angle_deg = {5};
+  panel.measured_value = {1.5};
+  WritePolarPlotPng({panel, panel}, "t", (dir / "p.png").string());
+  EXPECT_TRUE(IsPng((dir / "p.png").string()));
+  EXPECT_THROW(WriteChartPng(spec, (dir / "missing" / "c.png").string()),
+               std::exception);
+}
+
+}  // namespace
+}  // namespace clothfit
