@@ -8,6 +8,7 @@
 
 #include "apps/commands.h"
 #include "charts/bench.h"
+#include "charts/stability.h"
 #include "io/atomic_file.h"
 
 namespace clothfit {
@@ -15,7 +16,8 @@ namespace clothfit {
 int RunBench(int argc, char** argv) {
   CommandArgs args(
       "bench",
-      "clothfit bench [--quick] [--repeats N] [--models LIST] --out DIR",
+      "clothfit bench [--quick] [--stability] [--repeats N] [--models LIST] "
+      "--out DIR",
       "Sweeps the knobs that trade speed for accuracy (solver starts, "
       "iteration caps, lobes, lookup table,\ntolerance, threads, mip levels) "
       "for each fitter on synthetic data with truth held out from the fit,\n"
@@ -25,6 +27,9 @@ int RunBench(int argc, char** argv) {
       "ringed), DIR/<model>_size.png and DIR/summary.md. docs/bench.md "
       "explains the numbers.");
   args.Flag("quick", "small data and few knobs (seconds; the test suite's)");
+  args.Flag("stability",
+            "instead: success rate against noise, start distance, angular "
+            "coverage and outliers (DIR/stability.*)");
   args.Option("repeats", "N", "timed runs per configuration", "3");
   args.Option("models", "LIST", "comma-separated: thread,cloth,lafortune",
               "all");
@@ -56,6 +61,13 @@ int RunBench(int argc, char** argv) {
   options.progress = [](const std::string& what) {
     std::fprintf(stderr, "bench: %s\n", what.c_str());
   };
+  if (args.Has("stability")) {
+    for (const std::string& file :
+         WriteStabilityReport(RunStability(options), dir)) {
+      std::printf("wrote %s\n", file.c_str());
+    }
+    return 0;
+  }
   const std::vector<BenchRow> rows = clothfit::RunBench(options);
   WriteBenchCsv(rows, dir + "/bench.csv");
   std::printf("wrote %s/bench.csv\n", dir.c_str());

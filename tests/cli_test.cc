@@ -707,6 +707,46 @@ TEST(CliTest, BenchQuickWritesCsvChartsAndSummary) {
                  {"teapot"});
 }
 
+// bench --stability --quick: success rates per knob level; the thread fit
+// without a robust loss must fail on 20 % gross outliers and succeed with
+// the Cauchy loss (the failure mode docs/bench.md names).
+TEST(CliTest, BenchStabilityQuickWritesRatesAndCharts) {
+  const fs::path dir = TestDir();
+  const std::string out = (dir / "stability").string();
+  const RunResult r =
+      RunClothfit(dir, {"bench", "--quick", "--stability", "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  std::ifstream csv(out + "/stability.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line, "fitter,knob,level,level_label,runs,successes,median_error");
+  std::map<std::string, std::pair<int, int>> at_20_percent_outliers;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    std::stringstream fields(line);
+    std::string fitter, knob, level, label, runs, successes;
+    std::getline(fields, fitter, ',');
+    std::getline(fields, knob, ',');
+    std::getline(fields, level, ',');
+    std::getline(fields, label, ',');
+    std::getline(fields, runs, ',');
+    std::getline(fields, successes, ',');
+    EXPECT_LE(std::stoi(successes), std::stoi(runs)) << line;
+    if (knob == "outliers" && std::stod(level) == 0.2) {
+      at_20_percent_outliers[fitter] = {std::stoi(successes), std::stoi(runs)};
+    }
+  }
+  EXPECT_GE(rows, 15);
+  EXPECT_EQ(at_20_percent_outliers["thread"].first, 0);
+  EXPECT_EQ(at_20_percent_outliers["thread+cauchy"].first,
+            at_20_percent_outliers["thread+cauchy"].second);
+  for (const char* knob : {"noise", "start_distance", "coverage", "outliers"}) {
+    EXPECT_GT(fs::file_size(out + "/stability_" + std::string(knob) + ".png"),
+              1000u);
+  }
+}
+
 TEST(CliTest, PlotDrawsModelAgainstMeasuredRows) {
   const fs::path dir = TestDir();
   const std::string table = (dir / "t.csv").string();
