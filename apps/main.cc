@@ -18,6 +18,8 @@ struct Command {
 const Command kCommands[] = {
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
+    {"holes", clothfit::RunHoles,
+     "semi-transparent textures with thickness (analyze|eval|truth)"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},
