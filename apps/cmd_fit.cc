@@ -4,6 +4,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "apps/commands.h"
 #include "fitting/cloth_fit.h"
@@ -14,7 +15,6 @@
 #include "models/presets.h"
 
 namespace clothfit {
-namespace {
 
 std::vector<std::string> SplitList(const std::string& text) {
   std::vector<std::string> out;
@@ -24,6 +24,13 @@ std::vector<std::string> SplitList(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
+}
+
+void AddSolverOptions(CommandArgs* args) {
+  args->Option("loss", "L", "robust loss: none, huber or cauchy", "none");
+  args->Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
+  args->Option("max-iterations", "N", "solver iteration cap", "200");
+  args->Option("threads", "N", "threads for residual evaluation", "1");
 }
 
 SolverOptions ReadSolverOptions(const CommandArgs& args) {
@@ -59,27 +66,54 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   return s;
 }
 
-// Prints the summary, writes the result when usable, and gives the status.
+MeasurementTable ReadDataOption(const CommandArgs& args) {
+  ReadTableOptions read_options;
+  read_options.skip_invalid = args.Has("skip-invalid");
+  ReadTableResult read = ReadTable(args.Required("data"), read_options);
+  if (read.skipped > 0) {
+    std::cerr << "warning: skipped " << read.skipped
+              << " invalid row(s); first: " << read.first_skip_reason << "\n";
+  }
+  return std::move(read.table);
+}
+
+namespace {
+
+// Finish for the ModelParams fits: the result is a parameter file, and
 // `selection` (may be null) is the --tolerance report, added to "fit".
 int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
            const std::vector<double>& truth, const SelectionReport* selection) {
+  const std::string preface =
+      selection ? SelectionReportText(*selection) + "\n" : "";
+  return FinishFit(
+      report, truth, args.Get("out"),
+      [&](std::string fit_json) {
+        if (selection) {
+          nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
+          j["selection"] =
+              nlohmann::ordered_json::parse(SelectionReportJson(*selection));
+          fit_json = j.dump();
+        }
+        WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
+      },
+      preface);
+}
+
+}  // namespace
+
+int FinishFit(const FitReport& report, const std::vector<double>& truth,
+              const std::string& out_path,
+              const std::function<void(const std::string&)>& write,
+              const std::string& preface) {
   if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
-  if (selection) std::cout << SelectionReportText(*selection) << "\n";
-  std::cout << FitReportText(report, truth);
+  std::cout << preface << FitReportText(report, truth);
   if (!report.usable) {
     std::cerr << "error: the fit did not reach a usable solution: "
               << report.message << "; nothing written\n";
     return 1;
   }
-  std::string fit_json = FitReportJson(report);
-  if (selection) {
-    nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
-    j["selection"] =
-        nlohmann::ordered_json::parse(SelectionReportJson(*selection));
-    fit_json = j.dump();
-  }
-  WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
-  std::cout << "wrote " << args.Get("out") << "\n";
+  write(FitReportJson(report));
+  std::cout << "wrote " << out_path << "\n";
   if (!report.identifiability.empty()) {
     std::cerr << "warning: " << report.identifiability
               << " (the data do not determine them; fix them with --fix)\n";
@@ -92,22 +126,26 @@ int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
   return 0;
 }
 
-}  // namespace
-
 int RunFit(int argc, char** argv) {
-  // Lafortune fits take other options (apps/cmd_fit_lafortune.cc).
+  // Lafortune and holes fits take other options (apps/cmd_fit_lafortune.cc,
+  // apps/cmd_holes.cc).
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--model=lafortune" || (a == "--model" && i + 1 < argc &&
-                                     std::string(argv[i + 1]) == "lafortune")) {
+    const std::string next = i + 1 < argc ? argv[i + 1] : "";
+    if (a == "--model=lafortune" || (a == "--model" && next == "lafortune")) {
       return RunFitLafortune(argc, argv);
+    }
+    if (a == "--model=holes" || (a == "--model" && next == "holes")) {
+      return RunFitHoles(argc, argv);
     }
   }
   CommandArgs args(
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
       "--preset NAME] --out P.json [options]\n       clothfit fit --model "
-      "lafortune ... (see clothfit fit --model lafortune --help)",
+      "lafortune ... (see clothfit fit --model lafortune --help)\n       "
+      "clothfit fit --model holes ... (see clothfit fit --model holes "
+      "--help)",
       "Fits a model to a measurement table with Ceres (Levenberg-Marquardt, "
       "automatic derivatives, bounds),\nwrites the parameters with a \"fit\" "
       "object (errors, standard deviations), and prints a summary.\nthread: "
@@ -122,10 +160,7 @@ int RunFit(int argc, char** argv) {
   args.Option("out", "P.json", "result parameter file");
   args.Option("fix", "A,B", "parameters held fixed (e.g. eta,kd or albedo)");
   args.Option("free", "A,B", "free only these parameters");
-  args.Option("loss", "L", "robust loss: none, huber or cauchy", "none");
-  args.Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
-  args.Option("max-iterations", "N", "solver iteration cap", "200");
-  args.Option("threads", "N", "threads for residual evaluation", "1");
+  AddSolverOptions(&args);
   args.Option("starts", "N",
               "multi-start: solve from the N best-ranked starting points "
               "(default: 2 thread, 1 cloth)");
@@ -145,14 +180,7 @@ int RunFit(int argc, char** argv) {
   const std::string model = args.Required("model");
   CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args);
-  ReadTableOptions read_options;
-  read_options.skip_invalid = args.Has("skip-invalid");
-  const ReadTableResult read = ReadTable(args.Required("data"), read_options);
-  if (read.skipped > 0) {
-    std::cerr << "warning: skipped " << read.skipped
-              << " invalid row(s); first: " << read.first_skip_reason << "\n";
-  }
-  const MeasurementTable& table = read.table;
+  const MeasurementTable table = ReadDataOption(args);
   const std::vector<std::string> fix =
       SplitList(args.Has("fix") ? args.Get("fix") : "");
   const std::vector<std::string> free_only =

@@ -19,6 +19,8 @@ const Command kCommands[] = {
     {"bench", clothfit::RunBench, "speed against accuracy of every fitter"},
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
+    {"holes", clothfit::RunHoles,
+     "semi-transparent textures with thickness (analyze|eval|truth)"},
     {"plot", clothfit::RunPlot, "polar plots: measured values against a model"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},

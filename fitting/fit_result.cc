@@ -6,6 +6,14 @@
 
 namespace clothfit {
 
+glm::dvec3 OneChannelRgb(const std::string& name, const glm::dvec3& rgb,
+                         FitReport* report) {
+  for (ParameterReport& p : report->parameters) {
+    if (p.name == name + "_g" || p.name == name + "_b") p.value = rgb.x;
+  }
+  return glm::dvec3(rgb.x);
+}
+
 std::string FitReportJson(const FitReport& r) {
   nlohmann::ordered_json j;
   j["usable"] = r.usable;

@@ -51,6 +51,11 @@ struct FitReport {
   std::string identifiability;
 };
 
+// One-channel tables fit one value of an rgb parameter: returns
+// (rgb.x, rgb.x, rgb.x) and reports that value for `name`_g and `name`_b.
+glm::dvec3 OneChannelRgb(const std::string& name, const glm::dvec3& rgb,
+                         FitReport* report);
+
 // The "fit" object of a result file, as JSON text.
 std::string FitReportJson(const FitReport& report);
 // A one-screen summary; `truth` (same order as parameters, may be empty)

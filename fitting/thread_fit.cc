@@ -143,12 +143,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
   result.params = ThreadParamsFromArray(x.data());
   if (table.channels == 1) {  // one channel: one albedo
-    result.params.albedo = glm::dvec3(result.params.albedo.x);
-    for (ParameterReport& p : result.report.parameters) {
-      if (p.name == "albedo_g" || p.name == "albedo_b") {
-        p.value = result.params.albedo.x;
-      }
-    }
+    result.params.albedo =
+        OneChannelRgb("albedo", result.params.albedo, &result.report);
   }
   result.report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

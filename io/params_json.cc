@@ -206,6 +206,18 @@ void AppendPretty(const json& j, int indent, std::string* out) {
   *out += j.dump();
 }
 
+json ParseJson(const std::string& text, const std::string& name) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message carries "at line L, column C".
+    std::string what = e.what();
+    const size_t pos = what.find("parse error");
+    throw InputError(name + ": invalid JSON: " +
+                     (pos == std::string::npos ? what : what.substr(pos)));
+  }
+}
+
 }  // namespace
 
 const char* ModelName(const ModelParams& params) {
@@ -215,16 +227,7 @@ const char* ModelName(const ModelParams& params) {
 }
 
 ParamFile ParseParamFile(const std::string& text, const std::string& name) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message carries "at line L, column C".
-    std::string what = e.what();
-    const size_t pos = what.find("parse error");
-    throw InputError(name + ": invalid JSON: " +
-                     (pos == std::string::npos ? what : what.substr(pos)));
-  }
+  const json root = ParseJson(text, name);
   ObjectReader r(root, name, "");
   ParamFile out;
   const std::string model = r.String("model");
@@ -310,9 +313,13 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     if (!e.empty()) FailValidation(name, e);
     out.params = m;
   } else {
-    r.Fail("model", "unknown model \"" + model +
-                        "\" (expected \"thread\", \"cloth\" or "
-                        "\"lafortune\")");
+    r.Fail("model",
+           model == "holes"
+               ? "a holes model needs its mask: use clothfit holes eval "
+                 "--params"
+               : "unknown model \"" + model +
+                     "\" (expected \"thread\", \"cloth\" or "
+                     "\"lafortune\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -380,6 +387,54 @@ std::string FormatParamFile(const ParamFile& file) {
 
 void WriteParamFile(const ParamFile& file, const std::string& path) {
   WriteFileAtomically(path, FormatParamFile(file));
+}
+
+HolesParamFile ParseHolesParamFile(const std::string& text,
+                                   const std::string& name) {
+  const json root = ParseJson(text, name);
+  ObjectReader r(root, name, "");
+  const std::string model = r.String("model");
+  if (model != "holes") {
+    r.Fail("model", "expected \"holes\", got \"" + model + "\"");
+  }
+  HolesParamFile out;
+  out.params.thickness_texels = r.Number("thickness_texels");
+  if (r.Has("wall_color")) out.params.wall_color = r.Rgb("wall_color");
+  const std::string e = ValidateHolesParams(out.params);
+  if (!e.empty()) FailValidation(name, e);
+  if (r.Has("mask")) out.mask = r.String("mask");
+  out.threshold = r.NumberOr("threshold", 0.5);
+  if (!(out.threshold > 0.0 && out.threshold <= 1.0)) {
+    r.Fail("threshold", "must be in (0, 1]");
+  }
+  if (r.Has("method")) {
+    out.method = r.String("method");
+    if (out.method != "alg31" && out.method != "extension") {
+      r.Fail("method", "must be \"alg31\" or \"extension\"");
+    }
+  }
+  if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
+  r.Finish();
+  return out;
+}
+
+HolesParamFile ReadHolesParamFile(const std::string& path) {
+  return ParseHolesParamFile(ReadFileToString(path), path);
+}
+
+void WriteHolesParamFile(const HolesParamFile& file, const std::string& path) {
+  json j;
+  j["model"] = "holes";
+  j["thickness_texels"] = file.params.thickness_texels;
+  const glm::dvec3& c = file.params.wall_color;
+  j["wall_color"] = {c.x, c.y, c.z};
+  if (!file.mask.empty()) j["mask"] = file.mask;
+  j["threshold"] = file.threshold;
+  if (!file.method.empty()) j["method"] = file.method;
+  if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);
+  std::string out;
+  AppendPretty(j, 0, &out);
+  WriteFileAtomically(path, out + "\n");
 }
 
 }  // namespace clothfit

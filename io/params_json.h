@@ -16,6 +16,7 @@
 #include <variant>
 
 #include "models/evaluate.h"
+#include "models/holes.h"
 
 namespace clothfit {
 
@@ -36,5 +37,25 @@ ParamFile ReadParamFile(const std::string& path);
 std::string FormatParamFile(const ParamFile& file);
 // Atomic write (io/atomic_file.h). Throws InputError when it cannot write.
 void WriteParamFile(const ParamFile& file, const std::string& path);
+
+// A holes parameter file (issue 6), read and written by `clothfit holes`
+// and `clothfit fit --model holes` (the model needs a mask, so it is not a
+// ModelParams):
+//   {"model": "holes", "thickness_texels": 2.0, "wall_color": [0, 0, 0],
+//    "mask": "net.png", "threshold": 0.5, "method": "extension", "fit": {..}}
+// "mask", "threshold" and "method" record how the fit saw the mask
+// (optional; informational).
+struct HolesParamFile {
+  HolesParams params;
+  std::string mask;        // "" when absent
+  double threshold = 0.5;  // mask threshold
+  std::string method;      // "alg31" | "extension" | ""
+  std::string fit_json;    // the "fit" object as text, empty when absent
+};
+
+HolesParamFile ParseHolesParamFile(const std::string& text,
+                                   const std::string& name);
+HolesParamFile ReadHolesParamFile(const std::string& path);
+void WriteHolesParamFile(const HolesParamFile& file, const std::string& path);
 
 }  // namespace clothfit

@@ -1,0 +1,237 @@
+// clothfit holes analyze|eval|truth and clothfit fit --model holes (issue
+// 6): files, values against the library, exit statuses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "data_synthetic/holes_truth.h"
+#include "holes/hole_exr.h"
+#include "holes/hole_texture.h"
+#include "io/mask_io.h"
+#include "io/params_json.h"
+#include "io/table.h"
+#include "tests/cli_test_util.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::Describe;
+using testing_util::ReadText;
+using testing_util::RunClothfit;
+using testing_util::RunResult;
+
+fs::path TestDir() { return testing_util::FreshTestDir("holes_cli_test_"); }
+
+// View directions over theta x phi (degrees) as a transmittance table.
+std::string WriteDirections(const fs::path& dir) {
+  MeasurementTable table;
+  table.quantity = Quantity::kTransmittance;
+  table.channels = 1;
+  for (double theta : {0.0, 15.0, 30.0, 45.0, 55.0, 65.0}) {
+    for (double phi : {0.0, 30.0, 45.0, 120.0, 250.0}) {
+      TableRow row;
+      row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
+      table.rows.push_back(row);
+    }
+  }
+  const std::string path = (dir / "dirs.csv").string();
+  WriteTable(table, path);
+  return path;
+}
+
+std::string WriteNet(const fs::path& dir) {
+  const std::string path = (dir / "net.png").string();
+  WriteMask(SquareHoleMask(5, 1), path);
+  return path;
+}
+
+TEST(HolesCliTest, AnalyzeWritesTheCountPyramid) {
+  const fs::path dir = TestDir();
+  const std::string mask_path = (dir / "m.png").string();
+  WriteMask(RandomMask(12, 10, 0.4, 3), mask_path);
+  const std::string counts = (dir / "c.exr").string();
+  const std::string distances = (dir / "d.exr").string();
+  const RunResult r =
+      RunClothfit(dir, {"holes", "analyze", "--mask", mask_path, "--out",
+                        counts, "--distances", distances});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.out.find("12 x 10 texels"), std::string::npos) << r.out;
+  const Mask mask = ReadMask(mask_path);
+  const HoleTexture expected = AnalyzeMask(mask, true);
+  std::string metadata;
+  const CountPyramid back =
+      ReadCountPyramid(counts, CountKind::kHoleCounts, &metadata);
+  ASSERT_EQ(back.levels(), expected.counts.levels());
+  for (int level = 0; level < back.levels(); ++level) {
+    for (int y = 0; y < back.height(level); ++y) {
+      for (int x = 0; x < back.width(level); ++x) {
+        EXPECT_EQ(HoleTexelAt(back, level, x, y).counts,
+                  HoleTexelAt(expected.counts, level, x, y).counts);
+      }
+    }
+  }
+  EXPECT_NE(metadata.find("m.png"), std::string::npos);
+  EXPECT_EQ(ReadCountPyramid(distances, CountKind::kHoleDistances).base(),
+            expected.distances.base());
+}
+
+TEST(HolesCliTest, EvalMatchesTheLibrary) {
+  const fs::path dir = TestDir();
+  const std::string mask_path = (dir / "m.png").string();
+  WriteMask(RandomMask(16, 12, 0.35, 8), mask_path);
+  const std::string dirs = WriteDirections(dir);
+  const HoleTexture texture = AnalyzeMask(ReadMask(mask_path), true);
+  const MeasurementTable views = ReadTable(dirs).table;
+  for (const std::string method : {"alg31", "extension"}) {
+    for (const std::string level : {"top", "0"}) {
+      const std::string out = (dir / ("o_" + method + level + ".csv")).string();
+      const RunResult r = RunClothfit(
+          dir, {"holes", "eval", "--mask", mask_path, "--thickness", "1.5",
+                "--wall-color", "0.2,0.4,0.6", "--method", method, "--level",
+                level, "--dirs", dirs, "--out", out});
+      ASSERT_EQ(r.status, 0) << Describe(r);
+      const MeasurementTable table = ReadTable(out).table;
+      EXPECT_EQ(table.quantity, Quantity::kTransmittance);
+      ASSERT_EQ(table.channels, 3);
+      ASSERT_EQ(table.rows.size(), views.rows.size());
+      const int l = level == "top" ? texture.counts.levels() - 1 : 0;
+      for (size_t i = 0; i < views.rows.size(); ++i) {
+        const HoleRatios ratios =
+            EvaluateTile(texture, *ParseHoleMethod(method), l,
+                         ViewOffset(1.5, views.rows[i].wo));
+        const glm::dvec3 wall(0.2, 0.4, 0.6);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(table.rows[i].value[c],
+                      ratios.transparent + wall[c] * ratios.occluded, 1e-12);
+        }
+      }
+    }
+  }
+}
+
+TEST(HolesCliTest, TruthThenFitRecoversTheThickness) {
+  const fs::path dir = TestDir();
+  const std::string mask = WriteNet(dir);
+  const std::string dirs = WriteDirections(dir);
+  const std::string truth = (dir / "truth.csv").string();
+  RunResult r =
+      RunClothfit(dir, {"holes", "truth", "--mask", mask, "--thickness", "2",
+                        "--dirs", dirs, "--out", truth, "--rays", "200000"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable table = ReadTable(truth).table;
+  const Mask net = SquareHoleMask(5, 1);
+  const Footprint tile = TileFootprint(net, 200000);
+  for (const TableRow& row : table.rows) {
+    EXPECT_DOUBLE_EQ(row.value.x,
+                     HoleTruth(net, ViewOffset(2.0, row.wo), tile).transparent);
+  }
+  const std::string params = (dir / "p.json").string();
+  r = RunClothfit(dir, {"fit", "--model", "holes", "--data", truth, "--mask",
+                        mask, "--out", params});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const HolesParamFile fit = ReadHolesParamFile(params);
+  EXPECT_NEAR(fit.params.thickness_texels, 2.0, 0.02);
+  EXPECT_EQ(fit.mask, mask);
+  EXPECT_EQ(fit.method, "extension");
+  EXPECT_NE(fit.fit_json.find("\"stddev\":{\"thickness_texels\""),
+            std::string::npos)
+      << fit.fit_json;
+  // The fitted file drives eval.
+  const std::string out = (dir / "o.csv").string();
+  r = RunClothfit(dir, {"holes", "eval", "--mask", mask, "--params", params,
+                        "--dirs", dirs, "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable evaluated = ReadTable(out).table;
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    EXPECT_NEAR(evaluated.rows[i].value.x, table.rows[i].value.x, 0.01);
+  }
+}
+
+TEST(HolesCliTest, ChartsArePngWithCsv) {
+  const fs::path dir = TestDir();
+  const std::string mask = WriteNet(dir);
+  const std::string chart = (dir / "chart.png").string();
+  RunResult r = RunClothfit(
+      dir, {"holes", "eval", "--mask", mask, "--thickness", "2", "--chart",
+            chart, "--azimuth", "30", "--rays", "20000"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_EQ(ReadText(chart).substr(0, 4), "\x89PNG");
+  const std::string csv = ReadText(dir / "chart.csv");
+  EXPECT_NE(csv.find("theta_deg,alg31,extension,truth"), std::string::npos);
+  EXPECT_NE(csv.find("\n85,"), std::string::npos) << csv;
+  const std::string map = (dir / "map.png").string();
+  r = RunClothfit(dir, {"holes", "eval", "--error-map", map, "--hole-sizes",
+                        "1,3", "--thicknesses", "1,2", "--samples", "8"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_EQ(ReadText(map).substr(0, 4), "\x89PNG");
+  const std::string map_csv = ReadText(dir / "map.csv");
+  EXPECT_NE(map_csv.find("\n3,2,"), std::string::npos) << map_csv;
+}
+
+TEST(HolesCliTest, BadInputIsExitTwoWithAClearMessage) {
+  const fs::path dir = TestDir();
+  const std::string mask = WriteNet(dir);
+  const std::string dirs = WriteDirections(dir);
+  const std::string out = (dir / "o.csv").string();
+  const std::string missing = (dir / "missing.png").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"holes"}, "needs a subcommand"},
+      {{"holes", "spin"}, "unknown holes subcommand 'spin'"},
+      {{"holes", "analyze", "--mask", missing, "--out", out}, "missing.png"},
+      {{"holes", "analyze", "--mask", mask, "--out", out, "--threshold", "2"},
+       "--threshold"},
+      {{"holes", "eval", "--mask", mask, "--thickness", "1", "--dirs", dirs,
+        "--out", out, "--method", "magic"},
+       "--method"},
+      {{"holes", "eval", "--mask", mask, "--thickness", "-1", "--dirs", dirs,
+        "--out", out},
+       "thickness_texels"},
+      {{"holes", "eval", "--mask", mask, "--thickness", "1", "--dirs", dirs,
+        "--out", out, "--level", "9"},
+       "--level"},
+      {{"holes", "eval", "--mask", mask, "--thickness", "1", "--chart",
+        (dir / "c.jpg").string()},
+       ".png"},
+      {{"holes", "truth", "--mask", mask, "--dirs", dirs, "--out", out},
+       "--thickness"},
+      {{"fit", "--model", "holes", "--data", dirs, "--out", out}, "--mask"},
+  };
+  for (const auto& [args, piece] : cases) {
+    const RunResult r = RunClothfit(dir, args);
+    EXPECT_EQ(r.status, 2) << Describe(r);
+    EXPECT_NE(r.err.find(piece), std::string::npos)
+        << "'" << piece << "' not in: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args.back();
+  }
+  // A reflectance table cannot be fitted.
+  const std::string brdf = (dir / "brdf.csv").string();
+  testing_util::WriteText(brdf,
+                          "theta_i,phi_i,theta_o,phi_o,value\n0,0,0,0,1\n");
+  const RunResult r = RunClothfit(dir, {"fit", "--model", "holes", "--data",
+                                        brdf, "--mask", mask, "--out", out});
+  EXPECT_EQ(r.status, 2) << Describe(r);
+  EXPECT_NE(r.err.find("transmittance"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(HolesCliTest, HelpForEveryCommand) {
+  const fs::path dir = TestDir();
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{
+           {"holes", "--help"},
+           {"holes", "analyze", "--help"},
+           {"holes", "eval", "--help"},
+           {"holes", "truth", "--help"},
+           {"fit", "--model", "holes", "--help"}}) {
+    const RunResult r = RunClothfit(dir, args);
+    EXPECT_EQ(r.status, 0) << Describe(r);
+    EXPECT_NE(r.out.find("usage:"), std::string::npos) << r.out;
+  }
+}
+
+}  // namespace
+}  // namespace clothfit

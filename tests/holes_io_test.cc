@@ -1,0 +1,168 @@
+// Files of semi-transparent textures with thickness (issue 6): the count
+// pyramids as mip-mapped OpenEXR files with a JSON index (nine channels,
+// every level, read back exactly; damaged files are clear errors) and the
+// holes parameter file.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "data_synthetic/holes_truth.h"
+#include "holes/hole_exr.h"
+#include "holes/hole_texture.h"
+#include "io/param_mipmap.h"
+#include "io/params_json.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::ErrorOf;
+using testing_util::ExpectHas;
+
+fs::path TestDir() { return testing_util::FreshTestDir("holes_io_test_"); }
+
+void ExpectSamePyramid(const CountPyramid& a, const CountPyramid& b) {
+  ASSERT_EQ(a.levels(), b.levels());
+  ASSERT_EQ(a.channels(), b.channels());
+  std::vector<double> ca(a.channels()), cb(b.channels());
+  for (int level = 0; level < a.levels(); ++level) {
+    ASSERT_EQ(a.width(level), b.width(level));
+    ASSERT_EQ(a.height(level), b.height(level));
+    for (int y = 0; y < a.height(level); ++y) {
+      for (int x = 0; x < a.width(level); ++x) {
+        a.Counts(level, x, y, ca.data());
+        b.Counts(level, x, y, cb.data());
+        EXPECT_EQ(ca, cb) << "level " << level << " texel " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(HolesExrTest, RoundTripOfCountsAndDistances) {
+  const fs::path dir = TestDir();
+  const HoleTexture texture = AnalyzeMask(RandomMask(37, 20, 0.4, 9), true);
+  const std::string counts = (dir / "c.exr").string();
+  const std::string distances = (dir / "d.exr").string();
+  WriteCountPyramid(texture.counts, CountKind::kHoleCounts,
+                    "{\"mask\": \"m.png\"}", counts);
+  WriteCountPyramid(texture.distances, CountKind::kHoleDistances, "",
+                    distances);
+  // A tiled MIPMAP_LEVELS file with all six levels and nine channels.
+  const ParamMipmap raw = ReadParamMipmap(counts);
+  EXPECT_EQ(raw.levels.size(), 6u);
+  EXPECT_EQ(raw.channels.size(), 9u);
+  EXPECT_EQ(raw.channels.front(), "walls.top");
+  EXPECT_EQ(raw.channels.back(), "opaques");
+  std::string metadata;
+  ExpectSamePyramid(ReadCountPyramid(counts, CountKind::kHoleCounts, &metadata),
+                    texture.counts);
+  ExpectHas(metadata, {"\"mask\":\"m.png\"", "clothfit-hole-counts 1"});
+  ExpectSamePyramid(ReadCountPyramid(distances, CountKind::kHoleDistances),
+                    texture.distances);
+  EXPECT_EQ(ReadParamMipmap(distances).channels.size(),
+            static_cast<size_t>(kDistanceChannels));
+}
+
+TEST(HolesExrTest, DamagedFilesAreClearErrors) {
+  const fs::path dir = TestDir();
+  const HoleTexture texture = AnalyzeMask(RandomMask(8, 8, 0.5, 4), false);
+  const std::string path = (dir / "c.exr").string();
+  WriteCountPyramid(texture.counts, CountKind::kHoleCounts, "", path);
+  // The wrong kind.
+  ExpectHas(ErrorOf([&] { ReadCountPyramid(path, CountKind::kHoleDistances); }),
+            {"c.exr.json", "kind"});
+  ParamMipmap mipmap = ReadParamMipmap(path);
+  // A level that is not the sum of the one below.
+  mipmap.levels[2].data[kWallRight][3] += 1.0f;
+  WriteParamMipmap(mipmap, path);
+  ExpectHas(ErrorOf([&] { ReadCountPyramid(path, CountKind::kHoleCounts); }),
+            {"c.exr", "level 2 texel (1, 1)", "walls.right", "sum"});
+  // A fractional count at level 0.
+  mipmap = ReadParamMipmap((dir / "c.exr").string());
+  mipmap.levels[2].data[kWallRight][3] -= 1.0f;
+  mipmap.levels[0].data[kOpaques][9] = 0.5f;
+  WriteParamMipmap(mipmap, path);
+  ExpectHas(ErrorOf([&] { ReadCountPyramid(path, CountKind::kHoleCounts); }),
+            {"level 0 texel (1, 1)", "opaques", "integer"});
+  // Missing files.
+  ExpectHas(ErrorOf([&] {
+              ReadCountPyramid((dir / "none.exr").string(),
+                               CountKind::kHoleCounts);
+            }),
+            {"none.exr"});
+}
+
+TEST(HolesParamsTest, ArrayRoundTripAndRanges) {
+  HolesParams p;
+  p.thickness_texels = 2.5;
+  p.wall_color = glm::dvec3(0.1, 0.2, 0.3);
+  double x[HolesParams::kSize];
+  ToArray(p, x);
+  const HolesParams back = HolesParamsFromArray(x);
+  EXPECT_EQ(back.thickness_texels, 2.5);
+  EXPECT_EQ(back.wall_color, p.wall_color);
+  EXPECT_EQ(ValidateHolesParams(p), "");
+  p.thickness_texels = 0.0;
+  ExpectHas(ValidateHolesParams(p), {"thickness_texels"});
+  p.thickness_texels = 1.0;
+  p.wall_color.y = 1.5;
+  ExpectHas(ValidateHolesParams(p), {"wall_color", "component 1"});
+}
+
+TEST(HolesParamsTest, FileRoundTripAndErrors) {
+  const fs::path dir = TestDir();
+  HolesParamFile file;
+  file.params.thickness_texels = 1.0 / 3.0;
+  file.params.wall_color = glm::dvec3(0.25, 0.5, 0.75);
+  file.mask = "net.png";
+  file.threshold = 0.4;
+  file.method = "alg31";
+  file.fit_json = "{\"rms\":0.01}";
+  const std::string path = (dir / "p.json").string();
+  WriteHolesParamFile(file, path);
+  const HolesParamFile back = ReadHolesParamFile(path);
+  EXPECT_EQ(back.params.thickness_texels, 1.0 / 3.0);
+  EXPECT_EQ(back.params.wall_color, file.params.wall_color);
+  EXPECT_EQ(back.mask, "net.png");
+  EXPECT_EQ(back.threshold, 0.4);
+  EXPECT_EQ(back.method, "alg31");
+  EXPECT_EQ(back.fit_json, "{\"rms\":0.01}");
+  // A grey wall colour may be one number; the rest is optional.
+  const HolesParamFile grey = ParseHolesParamFile(
+      "{\"model\": \"holes\", \"thickness_texels\": 2, \"wall_color\": "
+      "0.5}",
+      "g.json");
+  EXPECT_EQ(grey.params.wall_color, glm::dvec3(0.5));
+  const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
+      {"{\"model\": \"thread\", \"thickness_texels\": 1}", {"'model'"}},
+      {"{\"model\": \"holes\"}", {"'thickness_texels'", "missing"}},
+      {"{\"model\": \"holes\", \"thickness_texels\": -1}",
+       {"'thickness_texels'", "(0, 1e4]"}},
+      {"{\"model\": \"holes\", \"thickness_texels\": 1, \"wall_color\": "
+       "[1, 2]}",
+       {"'wall_color'"}},
+      {"{\"model\": \"holes\", \"thickness_texels\": 1, \"method\": "
+       "\"x\"}",
+       {"'method'"}},
+      {"{\"model\": \"holes\", \"thickness_texels\": 1, \"hight\": 2}",
+       {"'hight'", "unknown key"}},
+      {"{\"model\": \"holes\", \"thickness_texels\": 1,}", {"invalid JSON"}},
+  };
+  for (const auto& [text, pieces] : bad) {
+    std::vector<std::string> all = pieces;
+    all.push_back("b.json");
+    const std::string message =
+        ErrorOf([&] { ParseHolesParamFile(text, "b.json"); });
+    for (const std::string& piece : all) {
+      EXPECT_NE(message.find(piece), std::string::npos)
+          << "'" << piece << "' not in: " << message;
+    }
+  }
+  // The general reader points holes files to their command.
+  ExpectHas(ErrorOf([&] { ReadParamFile(path); }),
+            {"p.json", "clothfit holes eval"});
+}
+
+}  // namespace
+}  // namespace clothfit
