@@ -211,6 +211,7 @@ void AppendPretty(const json& j, int indent, std::string* out) {
 const char* ModelName(const ModelParams& params) {
   if (std::holds_alternative<ThreadParams>(params)) return "thread";
   if (std::holds_alternative<LafortuneModel>(params)) return "lafortune";
+  if (std::holds_alternative<SlabParams>(params)) return "slab";
   return "cloth";
 }
 
@@ -300,10 +301,17 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     if (e.empty()) e = ValidateViewTable(m.lut);
     if (!e.empty()) FailValidation(name, e);
     out.params = m;
+  } else if (model == "slab") {
+    SlabParams p;
+    p.tau = r.Rgb("tau");
+    p.albedo = r.Rgb("albedo");
+    const std::string e = ValidateSlabParams(p);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = p;
   } else {
     r.Fail("model", "unknown model \"" + model +
-                        "\" (expected \"thread\", \"cloth\" or "
-                        "\"lafortune\")");
+                        "\" (expected \"thread\", \"cloth\", "
+                        "\"lafortune\" or \"slab\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -343,6 +351,9 @@ std::string FormatParamFile(const ParamFile& file) {
                   {"color", colors},
                   {"alpha", m->lut.alpha}};
     }
+  } else if (const auto* p = std::get_if<SlabParams>(&file.params)) {
+    j["tau"] = SlabTauIsScalar(*p) ? json(p->tau.x) : rgb(p->tau);
+    j["albedo"] = rgb(p->albedo);
   } else {
     const ClothParams& c = std::get<ClothParams>(file.params);
     json threads = json::array();
