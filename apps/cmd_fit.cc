@@ -3,7 +3,6 @@
 
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "apps/commands.h"
 #include "fitting/cloth_fit.h"
@@ -14,16 +13,6 @@
 
 namespace clothfit {
 namespace {
-
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
 
 SolverOptions ReadSolverOptions(const CommandArgs& args) {
   SolverOptions s;
@@ -58,12 +47,24 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   return s;
 }
 
-// Prints the summary, writes the result when usable, and gives the status.
-// `selection` (may be null) is the --tolerance report, added to "fit".
+// FinishFit with the --tolerance report (may be null) added to "fit".
 int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
            const std::vector<double>& truth, const SelectionReport* selection) {
+  FitExtras extras;
+  if (selection) {
+    extras.text = SelectionReportText(*selection) + "\n";
+    extras.json.emplace_back("selection", SelectionReportJson(*selection));
+  }
+  return FinishFit(args, fitted, report, truth, extras);
+}
+
+}  // namespace
+
+int FinishFit(const CommandArgs& args, const ModelParams& fitted,
+              const FitReport& report, const std::vector<double>& truth,
+              const FitExtras& extras) {
   if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
-  if (selection) std::cout << SelectionReportText(*selection) << "\n";
+  std::cout << extras.text;
   std::cout << FitReportText(report, truth);
   if (!report.usable) {
     std::cerr << "error: the fit did not reach a usable solution: "
@@ -71,10 +72,11 @@ int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
     return 1;
   }
   std::string fit_json = FitReportJson(report);
-  if (selection) {
+  if (!extras.json.empty()) {
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
-    j["selection"] =
-        nlohmann::ordered_json::parse(SelectionReportJson(*selection));
+    for (const auto& [key, text] : extras.json) {
+      j[key] = nlohmann::ordered_json::parse(text);
+    }
     fit_json = j.dump();
   }
   WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
@@ -91,31 +93,32 @@ int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
   return 0;
 }
 
-}  // namespace
-
 int RunFit(int argc, char** argv) {
   // Lafortune fits take other options (apps/cmd_fit_lafortune.cc).
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--model=lafortune" || (a == "--model" && i + 1 < argc &&
-                                     std::string(argv[i + 1]) == "lafortune")) {
-      return RunFitLafortune(argc, argv);
-    }
+  if (ModelArgument(argc, argv) == "lafortune") {
+    return RunFitLafortune(argc, argv);
   }
   CommandArgs args(
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
       "--preset NAME] --out P.json [options]\n       clothfit fit --model "
+      "slab --data T.csv[,D.csv,...] [--init P.json] [--per-channel-tau] "
+      "--out P.json [options]\n       clothfit fit --model "
       "lafortune ... (see clothfit fit --model lafortune --help)",
       "Fits a model to a measurement table with Ceres (Levenberg-Marquardt, "
       "automatic derivatives, bounds),\nwrites the parameters with a \"fit\" "
       "object (errors, standard deviations), and prints a summary.\nthread: "
       "without --init, a default multi-start grid (docs/fitting.md). cloth: "
       "the weave comes from\n--init or --preset; by default albedo, kd, "
-      "gamma_s_deg, gamma_v_deg of every thread are free.\nExit status 1 when "
+      "gamma_s_deg, gamma_v_deg of every thread are free.\nslab: one or more "
+      "tables, comma-separated: BSDF tables (reflection and/or transmission "
+      "rows)\nand direct-transmittance tables; the summary and the \"fit\" "
+      "object say whether the data are within\nthe model's regime "
+      "(docs/slab.md).\nExit status 1 when "
       "the fit reaches no usable solution or does not converge.");
-  args.Option("model", "M", "thread, cloth (or lafortune)");
-  args.Option("data", "T.csv", "measurement table (SPEC §2)");
+  args.Option("model", "M", "thread, cloth, slab (or lafortune)");
+  args.Option("data", "T.csv",
+              "measurement table (SPEC §2); slab: A.csv,B.csv,... ");
   args.Option("init", "P.json", "initial parameters");
   args.Option("preset", "NAME", "initial parameters from a preset (cloth)");
   args.Option("out", "P.json", "result parameter file");
@@ -139,11 +142,14 @@ int RunFit(int argc, char** argv) {
   args.Flag("fit-scale",
             "data on an arbitrary scale: also fit a factor on the model "
             "(reported as 'scale')");
+  args.Flag("per-channel-tau", "slab: one tau per channel (r, g, b)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
   args.Required("out");
   const SolverOptions solver = ReadSolverOptions(args);
+  if (model == "slab") return RunFitSlab(args, solver);
+  if (args.Has("per-channel-tau")) args.Fail("--per-channel-tau is for slab");
   ReadTableOptions read_options;
   read_options.skip_invalid = args.Has("skip-invalid");
   const ReadTableResult read = ReadTable(args.Required("data"), read_options);
@@ -231,7 +237,10 @@ int RunFit(int argc, char** argv) {
     const ClothFitResult r = FitCloth(table, layout, options);
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }
-  args.Fail("option '--model': expected thread or cloth, got '" + model + "'");
+  args.Fail(
+      "option '--model': expected thread, cloth, slab or lafortune, "
+      "got '" +
+      model + "'");
 }
 
 }  // namespace clothfit

@@ -4,8 +4,11 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/cli_args.h"
+#include "fitting/fit_result.h"
 #include "io/params_json.h"
 #include "io/table.h"
 
@@ -14,6 +17,7 @@ namespace clothfit {
 int RunEval(int argc, char** argv);
 int RunFit(int argc, char** argv);
 int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
+int RunSynthSlab(int argc, char** argv);     // synth --model slab
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);
@@ -26,5 +30,33 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
 // NAME; exactly one of the two must be given.
 ParamFile LoadModelOption(const CommandArgs& args,
                           const std::string& file_option = "params");
+
+// "a,b,,c" -> {"a", "b", "c"}.
+std::vector<std::string> SplitList(const std::string& text);
+// The value of option `name` as comma-separated finite numbers (at least
+// one); a bad item fails with the option's name.
+std::vector<double> NumberListOption(const CommandArgs& args,
+                                     const std::string& name);
+
+// The value of --model M / --model=M in argv[first..], "" when absent (for
+// commands that dispatch on it before parsing their options).
+std::string ModelArgument(int argc, char** argv, int first = 2);
+
+// What a fit adds besides its FitReport: text printed before the summary,
+// and (key, JSON text) entries added to the "fit" object.
+struct FitExtras {
+  std::string text;
+  std::vector<std::pair<std::string, std::string>> json;
+};
+
+// Prints the summary, writes --out when the fit is usable, and returns the
+// exit status (apps/cmd_fit.cc). `truth` (may be empty) adds a column of
+// true values in the report's parameter order.
+int FinishFit(const CommandArgs& args, const ModelParams& fitted,
+              const FitReport& report, const std::vector<double>& truth,
+              const FitExtras& extras);
+
+// fit --model slab, after RunFit parsed the options (apps/cmd_fit_slab.cc).
+int RunFitSlab(const CommandArgs& args, const SolverOptions& solver);
 
 }  // namespace clothfit

@@ -21,6 +21,7 @@
 #include "io/table.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
+#include "tests/cli_test_util.h"
 #include "tests/io_test_util.h"
 
 namespace clothfit {
@@ -30,80 +31,16 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
+using testing_util::Count;
+using testing_util::Describe;
+using testing_util::ExpectBadInput;
+using testing_util::FilesIn;
+using testing_util::ReadText;
+using testing_util::RunClothfit;
+using testing_util::RunResult;
+using testing_util::WriteText;
+
 fs::path TestDir() { return testing_util::FreshTestDir("cli_test_"); }
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in),
-                     std::istreambuf_iterator<char>());
-}
-
-void WriteText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-// Single-quotes a word for /bin/sh.
-std::string Quote(const std::string& word) {
-  std::string out = "'";
-  for (char c : word) {
-    if (c == '\'') {
-      out += "'\\''";
-    } else {
-      out += c;
-    }
-  }
-  return out + "'";
-}
-
-struct RunResult {
-  int status = -1;  // exit status, -1 if the process did not exit normally
-  std::string out;
-  std::string err;
-};
-
-// Runs `clothfit ARGS...` with stdout and stderr captured in files of
-// `dir` (named so that they do not clash with the files a test checks).
-RunResult RunClothfit(const fs::path& dir,
-                      const std::vector<std::string>& args) {
-  std::string command = Quote(CLOTHFIT_BINARY);
-  for (const std::string& arg : args) command += " " + Quote(arg);
-  const fs::path out_path = dir / "_stdout.txt";
-  const fs::path err_path = dir / "_stderr.txt";
-  command += " </dev/null >" + Quote(out_path.string()) + " 2>" +
-             Quote(err_path.string());
-  const int raw = std::system(command.c_str());
-  RunResult result;
-  if (raw != -1 && WIFEXITED(raw)) result.status = WEXITSTATUS(raw);
-  result.out = ReadText(out_path);
-  result.err = ReadText(err_path);
-  fs::remove(out_path);
-  fs::remove(err_path);
-  return result;
-}
-
-std::string Describe(const RunResult& r) {
-  return "exit " + std::to_string(r.status) + "\nstdout:\n" + r.out +
-         "\nstderr:\n" + r.err;
-}
-
-// The names of the regular files in `dir`.
-std::set<std::string> FilesIn(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    names.insert(entry.path().filename().string());
-  }
-  return names;
-}
-
-size_t Count(const std::string& text, const std::string& piece) {
-  size_t n = 0;
-  for (size_t pos = text.find(piece); pos != std::string::npos;
-       pos = text.find(piece, pos + 1)) {
-    ++n;
-  }
-  return n;
-}
 
 ClothParams Preset(const std::string& name) {
   ClothParams c;
@@ -391,25 +328,6 @@ TEST(CliTest, HelpOnEveryCommand) {
   const RunResult top = RunClothfit(dir, {"--help"});
   EXPECT_EQ(top.status, 0) << Describe(top);
   EXPECT_NE(top.out.find("usage:"), std::string::npos);
-}
-
-// Bad input: exit status 2, one error message on stderr holding every
-// piece, nothing on stdout, and no file left behind in `dir` other than
-// those it held before.
-void ExpectBadInput(const fs::path& dir, const std::vector<std::string>& args,
-                    std::initializer_list<std::string> pieces) {
-  const std::set<std::string> before = FilesIn(dir);
-  const RunResult r = RunClothfit(dir, args);
-  std::string what;
-  for (const std::string& a : args) what += " " + a;
-  EXPECT_EQ(r.status, 2) << what << "\n" << Describe(r);
-  EXPECT_EQ(Count(r.err, "error"), 1u) << what << "\n" << r.err;
-  EXPECT_EQ(r.out, "") << what;
-  for (const std::string& piece : pieces) {
-    EXPECT_NE(r.err.find(piece), std::string::npos)
-        << what << ": '" << piece << "' not in: " << r.err;
-  }
-  EXPECT_EQ(FilesIn(dir), before) << what;
 }
 
 // A directory with a valid P.json (linen) and D.csv (a few directions).
