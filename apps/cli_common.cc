@@ -1,4 +1,8 @@
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "apps/commands.h"
 #include "models/presets.h"
@@ -28,6 +32,41 @@ ParamFile LoadModelOption(const CommandArgs& args,
               "'; 'clothfit presets' lists them");
   }
   return ParamFile{cloth, ""};
+}
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+std::vector<double> NumberListOption(const CommandArgs& args,
+                                     const std::string& name) {
+  std::vector<double> out;
+  for (const std::string& item : SplitList(args.Get(name))) {
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(x)) {
+      args.Fail("option '--" + name + "': cannot parse '" + item +
+                "' as a finite number");
+    }
+    out.push_back(x);
+  }
+  if (out.empty()) args.Fail("option '--" + name + "': needs a number");
+  return out;
+}
+
+std::string ModelArgument(int argc, char** argv, int first) {
+  for (int i = first; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--model=", 0) == 0) return a.substr(8);
+    if (a == "--model" && i + 1 < argc) return argv[i + 1];
+  }
+  return "";
 }
 
 }  // namespace clothfit

@@ -16,16 +16,6 @@
 
 namespace clothfit {
 
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
-
 void AddSolverOptions(CommandArgs* args) {
   args->Option("loss", "L", "robust loss: none, huber or cauchy", "none");
   args->Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
@@ -77,30 +67,6 @@ MeasurementTable ReadDataOption(const CommandArgs& args) {
   return std::move(read.table);
 }
 
-namespace {
-
-// Finish for the ModelParams fits: the result is a parameter file, and
-// `selection` (may be null) is the --tolerance report, added to "fit".
-int Finish(const CommandArgs& args, ModelParams fitted, const FitReport& report,
-           const std::vector<double>& truth, const SelectionReport* selection) {
-  const std::string preface =
-      selection ? SelectionReportText(*selection) + "\n" : "";
-  return FinishFit(
-      report, truth, args.Get("out"),
-      [&](std::string fit_json) {
-        if (selection) {
-          nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
-          j["selection"] =
-              nlohmann::ordered_json::parse(SelectionReportJson(*selection));
-          fit_json = j.dump();
-        }
-        WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
-      },
-      preface);
-}
-
-}  // namespace
-
 int FinishFit(const FitReport& report, const std::vector<double>& truth,
               const std::string& out_path,
               const std::function<void(const std::string&)>& write,
@@ -126,23 +92,52 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
   return 0;
 }
 
+int FinishFit(const CommandArgs& args, const ModelParams& fitted,
+              const FitReport& report, const std::vector<double>& truth,
+              const FitExtras& extras) {
+  return FinishFit(
+      report, truth, args.Get("out"),
+      [&](std::string fit_json) {
+        if (!extras.json.empty()) {
+          nlohmann::ordered_json j = nlohmann::ordered_json::parse(fit_json);
+          for (const auto& [key, text] : extras.json) {
+            j[key] = nlohmann::ordered_json::parse(text);
+          }
+          fit_json = j.dump();
+        }
+        WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
+      },
+      extras.text);
+}
+
+namespace {
+
+// FinishFit with the --tolerance report (may be null) added to "fit".
+int Finish(const CommandArgs& args, const ModelParams& fitted,
+           const FitReport& report, const std::vector<double>& truth,
+           const SelectionReport* selection) {
+  FitExtras extras;
+  if (selection) {
+    extras.text = SelectionReportText(*selection) + "\n";
+    extras.json.emplace_back("selection", SelectionReportJson(*selection));
+  }
+  return FinishFit(args, fitted, report, truth, extras);
+}
+
+}  // namespace
+
 int RunFit(int argc, char** argv) {
   // Lafortune and holes fits take other options (apps/cmd_fit_lafortune.cc,
   // apps/cmd_holes.cc).
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    const std::string next = i + 1 < argc ? argv[i + 1] : "";
-    if (a == "--model=lafortune" || (a == "--model" && next == "lafortune")) {
-      return RunFitLafortune(argc, argv);
-    }
-    if (a == "--model=holes" || (a == "--model" && next == "holes")) {
-      return RunFitHoles(argc, argv);
-    }
-  }
+  const std::string model_argument = ModelArgument(argc, argv);
+  if (model_argument == "lafortune") return RunFitLafortune(argc, argv);
+  if (model_argument == "holes") return RunFitHoles(argc, argv);
   CommandArgs args(
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
       "--preset NAME] --out P.json [options]\n       clothfit fit --model "
+      "slab --data T.csv[,D.csv,...] [--init P.json] [--per-channel-tau] "
+      "--out P.json [options]\n       clothfit fit --model "
       "lafortune ... (see clothfit fit --model lafortune --help)\n       "
       "clothfit fit --model holes ... (see clothfit fit --model holes "
       "--help)",
@@ -151,10 +146,15 @@ int RunFit(int argc, char** argv) {
       "object (errors, standard deviations), and prints a summary.\nthread: "
       "without --init, a default multi-start grid (docs/fitting.md). cloth: "
       "the weave comes from\n--init or --preset; by default albedo, kd, "
-      "gamma_s_deg, gamma_v_deg of every thread are free.\nExit status 1 when "
+      "gamma_s_deg, gamma_v_deg of every thread are free.\nslab: one or more "
+      "tables, comma-separated: BSDF tables (reflection and/or transmission "
+      "rows)\nand direct-transmittance tables; the summary and the \"fit\" "
+      "object say whether the data are within\nthe model's regime "
+      "(docs/slab.md).\nExit status 1 when "
       "the fit reaches no usable solution or does not converge.");
-  args.Option("model", "M", "thread, cloth (or lafortune)");
-  args.Option("data", "T.csv", "measurement table (SPEC §2)");
+  args.Option("model", "M", "thread, cloth, slab (or lafortune, holes)");
+  args.Option("data", "T.csv",
+              "measurement table (SPEC §2); slab: A.csv,B.csv,... ");
   args.Option("init", "P.json", "initial parameters");
   args.Option("preset", "NAME", "initial parameters from a preset (cloth)");
   args.Option("out", "P.json", "result parameter file");
@@ -175,11 +175,14 @@ int RunFit(int argc, char** argv) {
   args.Flag("fit-scale",
             "data on an arbitrary scale: also fit a factor on the model "
             "(reported as 'scale')");
+  args.Flag("per-channel-tau", "slab: one tau per channel (r, g, b)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
   CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args);
+  if (model == "slab") return RunFitSlab(args, solver);
+  if (args.Has("per-channel-tau")) args.Fail("--per-channel-tau is for slab");
   const MeasurementTable table = ReadDataOption(args);
   const std::vector<std::string> fix =
       SplitList(args.Has("fix") ? args.Get("fix") : "");
@@ -260,7 +263,10 @@ int RunFit(int argc, char** argv) {
     const ClothFitResult r = FitCloth(table, layout, options);
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }
-  args.Fail("option '--model': expected thread or cloth, got '" + model + "'");
+  args.Fail(
+      "option '--model': expected thread, cloth, slab, lafortune or "
+      "holes, got '" +
+      model + "'");
 }
 
 }  // namespace clothfit

@@ -6,6 +6,7 @@
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "io/image_stack.h"
+#include "io/input_error.h"
 #include "io/text_util.h"
 
 namespace clothfit {
@@ -52,13 +53,23 @@ int RunGonio(const CommandArgs& args) {
 }  // namespace
 
 int RunSynth(int argc, char** argv) {
+  // The slab has tables of its own (apps/cmd_synth_slab.cc).
+  const std::string model_name = ModelArgument(argc, argv);
+  if (model_name == "slab") return RunSynthSlab(argc, argv);
+  if (!model_name.empty()) {
+    throw InputError(
+        "clothfit synth: option '--model': only slab is chosen "
+        "this way (other models: --params or --preset)");
+  }
   CommandArgs args(
       "synth",
       "clothfit synth (--params P.json | --preset NAME) --out T.csv "
       "[--rows N] [--noise F] [--seed S] [--dirs D.csv] [--quantity Q]\n"
       "       clothfit synth --gonio plain|satin|knit [--texels S] "
       "[--directions N] [--supersample K] [--seed S] (--out T.csv | --stack "
-      "M.csv)",
+      "M.csv)\n"
+      "       clothfit synth --model slab ... (see clothfit synth --model "
+      "slab --help)",
       "Writes a synthetic measurement table: the model's values at random "
       "directions (uniform in solid angle,\n5 % of rows at grazing 89.9 deg) "
       "or at the directions of D.csv, with multiplicative Gaussian noise.\n"
@@ -129,7 +140,8 @@ int RunSynth(int argc, char** argv) {
     sampling.min_cos_theta =
         max_theta >= 90.0 ? 0.0 : std::cos(max_theta * kPi / 180.0);
     sampling.full_sphere_out =
-        std::holds_alternative<ThreadParams>(model.params);
+        std::holds_alternative<ThreadParams>(model.params) ||
+        std::holds_alternative<SlabParams>(model.params);
     table.rows = SampleDirections(sampling, &random);
     table.direction_columns = DirectionColumns::kAngles;
   }

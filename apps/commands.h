@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "apps/cli_args.h"
@@ -21,6 +22,7 @@ int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
 int RunFitHoles(int argc, char** argv);      // fit --model holes
 int RunHoles(int argc, char** argv);         // holes analyze|eval|truth
 int RunPlot(int argc, char** argv);
+int RunSynthSlab(int argc, char** argv);  // synth --model slab
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);
@@ -34,8 +36,16 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
 ParamFile LoadModelOption(const CommandArgs& args,
                           const std::string& file_option = "params");
 
-// "a,b,,c" -> {"a", "b", "c"} (--fix, --free).
+// "a,b,,c" -> {"a", "b", "c"} (--fix, --free, lists of files).
 std::vector<std::string> SplitList(const std::string& text);
+// The value of option `name` as comma-separated finite numbers (at least
+// one); a bad item fails with the option's name.
+std::vector<double> NumberListOption(const CommandArgs& args,
+                                     const std::string& name);
+
+// The value of --model M / --model=M in argv[first..], "" when absent (for
+// commands that dispatch on it before parsing their options).
+std::string ModelArgument(int argc, char** argv, int first = 2);
 
 // The solver options of a fit command: --loss, --loss-scale,
 // --max-iterations and --threads (apps/cmd_fit.cc), and their values (with
@@ -56,5 +66,21 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
               const std::string& out_path,
               const std::function<void(const std::string&)>& write,
               const std::string& preface = "");
+
+// What a fit adds besides its FitReport: text printed before the summary,
+// and (key, JSON text) entries added to the "fit" object.
+struct FitExtras {
+  std::string text;
+  std::vector<std::pair<std::string, std::string>> json;
+};
+
+// FinishFit for a parameter file: writes `fitted` to --out with the "fit"
+// object and the extras' entries.
+int FinishFit(const CommandArgs& args, const ModelParams& fitted,
+              const FitReport& report, const std::vector<double>& truth,
+              const FitExtras& extras);
+
+// fit --model slab, after RunFit parsed the options (apps/cmd_fit_slab.cc).
+int RunFitSlab(const CommandArgs& args, const SolverOptions& solver);
 
 }  // namespace clothfit

@@ -46,6 +46,21 @@ void BM_ThreadBsdf(benchmark::State& state) {
 }
 BENCHMARK(BM_ThreadBsdf);
 
+// The slab's f_r or f_t (issue 5), wo over the whole sphere.
+void BM_SlabBsdf(benchmark::State& state) {
+  SlabParams slab;
+  slab.tau = glm::dvec3(0.08);
+  slab.albedo = {0.9, 0.6, 0.3};
+  const std::vector<TableRow> rows = Directions(true);
+  size_t i = 0;
+  for (auto _ : state) {
+    const TableRow& r = rows[i++ & 4095];
+    benchmark::DoNotOptimize(SlabBsdf(slab, r.wi, r.wo));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SlabBsdf);
+
 }  // namespace
 }  // namespace clothfit
 

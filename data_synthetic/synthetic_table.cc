@@ -110,7 +110,8 @@ MeasurementTable SyntheticTable(const ModelParams& params,
                                 DirectionSampling sampling,
                                 const SynthOptions& options, uint64_t seed) {
   Random random(seed);
-  sampling.full_sphere_out = std::holds_alternative<ThreadParams>(params);
+  sampling.full_sphere_out = std::holds_alternative<ThreadParams>(params) ||
+                             std::holds_alternative<SlabParams>(params);
   MeasurementTable table;
   table.rows = SampleDirections(sampling, &random);
   SynthesizeValues(params, options, &random, &table);

@@ -32,7 +32,8 @@ struct DirectionSampling {
   // Cosine of the largest polar angle sampled (0 reaches grazing; the
   // sampler also places rows at theta = 89.9 deg when grazing is included).
   double min_cos_theta = 0.0;
-  // wo over the whole sphere instead of the upper hemisphere (thread tables).
+  // wo over the whole sphere instead of the upper hemisphere (thread and
+  // slab tables).
   bool full_sphere_out = false;
 };
 
@@ -55,7 +56,8 @@ void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
                       Random* random, MeasurementTable* table);
 
 // Both in one call, from a seed: `sampling.rows` random direction pairs
-// (wo over the whole sphere for a thread model) and the model's values.
+// (wo over the whole sphere for a thread or slab model) and the model's
+// values.
 MeasurementTable SyntheticTable(const ModelParams& params,
                                 DirectionSampling sampling,
                                 const SynthOptions& options, uint64_t seed);

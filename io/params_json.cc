@@ -223,6 +223,7 @@ json ParseJson(const std::string& text, const std::string& name) {
 const char* ModelName(const ModelParams& params) {
   if (std::holds_alternative<ThreadParams>(params)) return "thread";
   if (std::holds_alternative<LafortuneModel>(params)) return "lafortune";
+  if (std::holds_alternative<SlabParams>(params)) return "slab";
   return "cloth";
 }
 
@@ -312,14 +313,21 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     if (e.empty()) e = ValidateViewTable(m.lut);
     if (!e.empty()) FailValidation(name, e);
     out.params = m;
+  } else if (model == "slab") {
+    SlabParams p;
+    p.tau = r.Rgb("tau");
+    p.albedo = r.Rgb("albedo");
+    const std::string e = ValidateSlabParams(p);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = p;
   } else {
     r.Fail("model",
            model == "holes"
                ? "a holes model needs its mask: use clothfit holes eval "
                  "--params"
                : "unknown model \"" + model +
-                     "\" (expected \"thread\", \"cloth\" or "
-                     "\"lafortune\")");
+                     "\" (expected \"thread\", \"cloth\", "
+                     "\"lafortune\" or \"slab\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -360,6 +368,9 @@ std::string FormatParamFile(const ParamFile& file) {
                   {"color", colors},
                   {"alpha", m->lut.alpha}};
     }
+  } else if (const auto* p = std::get_if<SlabParams>(&file.params)) {
+    j["tau"] = SlabTauIsScalar(*p) ? json(p->tau.x) : rgb(p->tau);
+    j["albedo"] = rgb(p->albedo);
   } else {
     const ClothParams& c = std::get<ClothParams>(file.params);
     json threads = json::array();

@@ -4,6 +4,7 @@
 //    "gamma_v_deg": 5.0, "albedo": [0.035, 0.01295, 0.0105]}
 //   {"model": "cloth", "threads": [{"direction": "u", "coverage": 0.33,
 //    "offsets_deg": [-25, 25], "eta": 1.46, ...}, ...]}
+//   {"model": "slab", "tau": 0.5, "albedo": [0.9, 0.8, 0.7]}
 //
 // A cloth thread gives its tangent samples either explicitly ("offsets_deg")
 // or as a tangent curve ("curve_offsets_deg", "curve_lengths", "samples").
@@ -26,7 +27,7 @@ struct ParamFile {
   std::string fit_json;
 };
 
-// "thread" | "cloth".
+// "thread" | "cloth" | "lafortune" | "slab".
 const char* ModelName(const ModelParams& params);
 
 // Throws InputError naming `name` and the key on any problem.

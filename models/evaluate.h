@@ -9,14 +9,18 @@
 #include "models/microcylinder_cloth.h"
 #include "models/microcylinder_thread.h"
 #include "models/quantity.h"
+#include "models/slab.h"
 
 namespace clothfit {
 
-using ModelParams = std::variant<ThreadParams, ClothParams, LafortuneModel>;
+using ModelParams =
+    std::variant<ThreadParams, ClothParams, LafortuneModel, SlabParams>;
 
-// Whether a model can predict a quantity (neither predicts transmittance).
-inline bool ModelPredicts(const ModelParams& /*params*/, Quantity q) {
-  return q == Quantity::kBrdf || q == Quantity::kCosineWeighted;
+// Whether a model can predict a quantity (only the slab predicts
+// transmittance).
+inline bool ModelPredicts(const ModelParams& params, Quantity q) {
+  return q == Quantity::kBrdf || q == Quantity::kCosineWeighted ||
+         std::holds_alternative<SlabParams>(params);
 }
 
 // A thread alone, in the thread frame (tangent +x, normal +z).
@@ -43,6 +47,17 @@ Vec3<T> ClothValue(const ClothParamsT<T>& c, const Vec3<T>& wi,
   return FromCosineWeighted(ClothRho(c, wi, wo), wi.z, q);
 }
 
+// A slab in the surface frame: f_r or f_t (SPEC §3.4) as quantity q (rho =
+// f |wi.z|), or the direct transmittance D(|wo.z|) for kTransmittance.
+template <typename T, typename G>
+Vec3<T> SlabValue(const SlabParamsT<T>& p, const Vec3<G>& wi, const Vec3<G>& wo,
+                  Quantity q) {
+  using std::abs;
+  if (q == Quantity::kTransmittance) return SlabDirectTransmittance(p, wo);
+  const Vec3<T> f = SlabBsdf(p, wi, wo);
+  return q == Quantity::kCosineWeighted ? f * T(abs(wi.z)) : f;
+}
+
 // Double-precision evaluation of any parameter set. Requires
 // ModelPredicts(params, q).
 inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
@@ -52,6 +67,9 @@ inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
   }
   if (const auto* m = std::get_if<LafortuneModel>(&params)) {
     return FromCosineWeighted(LafortuneRho(*m, wi, wo), wi.z, q);
+  }
+  if (const auto* s = std::get_if<SlabParams>(&params)) {
+    return SlabValue(*s, wi, wo, q);
   }
   return ClothValue(std::get<ClothParams>(params), wi, wo, q);
 }

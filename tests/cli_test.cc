@@ -33,31 +33,16 @@ namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
 
-fs::path TestDir() { return testing_util::FreshTestDir("cli_test_"); }
-
+using testing_util::Count;
 using testing_util::Describe;
+using testing_util::ExpectBadInput;
+using testing_util::FilesIn;
 using testing_util::ReadText;
 using testing_util::RunClothfit;
 using testing_util::RunResult;
 using testing_util::WriteText;
 
-// The names of the regular files in `dir`.
-std::set<std::string> FilesIn(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    names.insert(entry.path().filename().string());
-  }
-  return names;
-}
-
-size_t Count(const std::string& text, const std::string& piece) {
-  size_t n = 0;
-  for (size_t pos = text.find(piece); pos != std::string::npos;
-       pos = text.find(piece, pos + 1)) {
-    ++n;
-  }
-  return n;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("cli_test_"); }
 
 ClothParams Preset(const std::string& name) {
   ClothParams c;
@@ -345,25 +330,6 @@ TEST(CliTest, HelpOnEveryCommand) {
   const RunResult top = RunClothfit(dir, {"--help"});
   EXPECT_EQ(top.status, 0) << Describe(top);
   EXPECT_NE(top.out.find("usage:"), std::string::npos);
-}
-
-// Bad input: exit status 2, one error message on stderr holding every
-// piece, nothing on stdout, and no file left behind in `dir` other than
-// those it held before.
-void ExpectBadInput(const fs::path& dir, const std::vector<std::string>& args,
-                    std::initializer_list<std::string> pieces) {
-  const std::set<std::string> before = FilesIn(dir);
-  const RunResult r = RunClothfit(dir, args);
-  std::string what;
-  for (const std::string& a : args) what += " " + a;
-  EXPECT_EQ(r.status, 2) << what << "\n" << Describe(r);
-  EXPECT_EQ(Count(r.err, "error"), 1u) << what << "\n" << r.err;
-  EXPECT_EQ(r.out, "") << what;
-  for (const std::string& piece : pieces) {
-    EXPECT_NE(r.err.find(piece), std::string::npos)
-        << what << ": '" << piece << "' not in: " << r.err;
-  }
-  EXPECT_EQ(FilesIn(dir), before) << what;
 }
 
 // A directory with a valid P.json (linen) and D.csv (a few directions).

@@ -1,13 +1,17 @@
-// Runs the clothfit executable in tests: arguments quoted for /bin/sh,
-// stdout and stderr captured, the exit status returned.
+// Helpers for the tests that run the clothfit executable (SPEC §5):
+// running it with captured output, and the checks every bad input must
+// pass.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -68,6 +72,44 @@ inline RunResult RunClothfit(const std::filesystem::path& dir,
 inline std::string Describe(const RunResult& r) {
   return "exit " + std::to_string(r.status) + "\nstdout:\n" + r.out +
          "\nstderr:\n" + r.err;
+}
+
+// The names of the regular files in `dir`.
+inline std::set<std::string> FilesIn(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+inline size_t Count(const std::string& text, const std::string& piece) {
+  size_t n = 0;
+  for (size_t pos = text.find(piece); pos != std::string::npos;
+       pos = text.find(piece, pos + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// Bad input: exit status 2, one error message on stderr holding every
+// piece, nothing on stdout, and no file left behind in `dir` other than
+// those it held before.
+inline void ExpectBadInput(const std::filesystem::path& dir,
+                           const std::vector<std::string>& args,
+                           std::initializer_list<std::string> pieces) {
+  const std::set<std::string> before = FilesIn(dir);
+  const RunResult r = RunClothfit(dir, args);
+  std::string what;
+  for (const std::string& a : args) what += " " + a;
+  EXPECT_EQ(r.status, 2) << what << "\n" << Describe(r);
+  EXPECT_EQ(Count(r.err, "error"), 1u) << what << "\n" << r.err;
+  EXPECT_EQ(r.out, "") << what;
+  for (const std::string& piece : pieces) {
+    EXPECT_NE(r.err.find(piece), std::string::npos)
+        << what << ": '" << piece << "' not in: " << r.err;
+  }
+  EXPECT_EQ(FilesIn(dir), before) << what;
 }
 
 }  // namespace testing_util

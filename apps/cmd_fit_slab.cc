@@ -1,0 +1,77 @@
+// clothfit fit --model slab: tau and albedo of the optically thin slab
+// (SPEC §3.4) from one or more tables, with the validity report.
+#include <iostream>
+
+#include "apps/commands.h"
+#include "fitting/slab_fit.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+
+int RunFitSlab(const CommandArgs& args, const SolverOptions& solver) {
+  for (const char* option :
+       {"preset", "generic-start", "tolerance", "fit-scale"}) {
+    if (args.Has(option)) {
+      args.Fail(std::string("--") + option + " is not available for slab fits");
+    }
+  }
+  ReadTableOptions read_options;
+  read_options.skip_invalid = args.Has("skip-invalid");
+  const std::vector<std::string> paths = SplitList(args.Required("data"));
+  if (paths.empty()) args.Fail("option '--data': needs a table");
+  std::vector<MeasurementTable> tables;
+  for (const std::string& path : paths) {
+    const ReadTableResult read = ReadTable(path, read_options);
+    if (read.skipped > 0) {
+      std::cerr << "warning: skipped " << read.skipped
+                << " invalid row(s); first: " << read.first_skip_reason << "\n";
+    }
+    tables.push_back(read.table);
+  }
+
+  SlabFitOptions options;
+  options.solver = solver;
+  options.per_channel_tau = args.Has("per-channel-tau");
+  options.fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
+  options.free_only = SplitList(args.Has("free") ? args.Get("free") : "");
+  if (args.Has("starts")) {
+    const long n = args.GetInt("starts");
+    if (n < 1 || n > 100) args.Fail("option '--starts': must be in [1, 100]");
+    options.solve_starts = static_cast<int>(n);
+  }
+  if (args.Has("init")) {
+    const ParamFile init = ReadParamFile(args.Get("init"));
+    if (!std::holds_alternative<SlabParams>(init.params)) {
+      args.Fail(args.Get("init") + ": expected a slab parameter file");
+    }
+    options.init = std::get<SlabParams>(init.params);
+  }
+  SlabFitResult result;
+  try {
+    result = FitSlab(tables, options);
+  } catch (const InputError& e) {  // name the tables
+    throw InputError(args.Get("data") + ": " + e.what());
+  }
+
+  std::vector<double> truth;
+  if (args.Has("truth")) {
+    const ParamFile file = ReadParamFile(args.Get("truth"));
+    if (const auto* p = std::get_if<SlabParams>(&file.params)) {
+      truth = SlabValuesInReportOrder(*p, result.report);
+    }
+  }
+  FitExtras extras;
+  if (result.report.usable) {
+    extras.text = SlabValidityText(result.validity) + "\n";
+    extras.json.emplace_back("validity", SlabValidityJson(result.validity));
+  }
+  const int status =
+      FinishFit(args, result.params, result.report, truth, extras);
+  if (result.report.usable && !result.validity.within_regime) {
+    std::cerr << "warning: the data are outside the slab model's regime "
+                 "(see 'validity' above and docs/slab.md)\n";
+  }
+  return status;
+}
+
+}  // namespace clothfit

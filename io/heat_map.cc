@@ -1,0 +1,152 @@
+#include "io/heat_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "io/atomic_file.h"
+#include "io/input_error.h"
+
+namespace clothfit {
+namespace {
+
+constexpr int kCellWidth = 84;
+constexpr int kCellHeight = 40;
+constexpr int kLeft = 120;      // room for the row labels and y title
+constexpr int kTop = 70;        // title
+constexpr int kBottom = 90;     // column labels, x title, threshold note
+constexpr int kBarWidth = 150;  // colour bar and its labels
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+const cv::Scalar kInk(30, 30, 30);
+const cv::Scalar kPaper(255, 255, 255);
+const cv::Scalar kMissing(190, 190, 190);
+const cv::Scalar kAlarm(0, 0, 230);  // BGR red
+
+// Position of a value in [0, 1] on the colour scale.
+double Position(const HeatMap& map, double value) {
+  double lo = map.lo, hi = map.hi, v = value;
+  if (map.log_scale) {
+    lo = std::log10(lo);
+    hi = std::log10(hi);
+    v = std::log10(std::max(value, 1e-300));
+  }
+  if (!(hi > lo)) return 0.5;
+  return std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
+}
+
+// The viridis colour (BGR) at position t in [0, 1].
+cv::Scalar Colour(const cv::Mat& lut, double t) {
+  const cv::Vec3b c =
+      lut.at<cv::Vec3b>(0, static_cast<int>(std::lround(t * 255)));
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
+// Text centred on (x, y) in ink or paper, whichever reads better on `under`.
+void Centred(cv::Mat* img, const std::string& text, int x, int y, double scale,
+             const cv::Scalar& under) {
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(text, kFont, scale, 1, &baseline);
+  const double luma = 0.114 * under[0] + 0.587 * under[1] + 0.299 * under[2];
+  cv::putText(*img, text, cv::Point(x - size.width / 2, y + size.height / 2),
+              kFont, scale, luma > 128 ? kInk : kPaper, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
+  const int cols = static_cast<int>(map.x_labels.size());
+  const int rows = static_cast<int>(map.y_labels.size());
+  if (cols == 0 || rows == 0 ||
+      map.values.size() != static_cast<size_t>(cols * rows) ||
+      (!map.cell_text.empty() && map.cell_text.size() != map.values.size())) {
+    throw InputError(path + ": heat map: labels and values do not match");
+  }
+  if (map.log_scale && !(map.lo > 0.0 && map.hi > 0.0)) {
+    throw InputError(path + ": heat map: a log scale needs lo, hi > 0");
+  }
+  cv::Mat gradient(1, 256, CV_8UC1);
+  for (int i = 0; i < 256; ++i)
+    gradient.at<uchar>(0, i) = static_cast<uchar>(i);
+  cv::Mat lut;
+  cv::applyColorMap(gradient, lut, cv::COLORMAP_VIRIDIS);
+
+  const int width = kLeft + cols * kCellWidth + kBarWidth;
+  const int height = kTop + rows * kCellHeight + kBottom;
+  cv::Mat img(height, width, CV_8UC3, kPaper);
+  cv::putText(img, map.title, cv::Point(12, 30), kFont, 0.6, kInk, 1,
+              cv::LINE_AA);
+
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const size_t i = static_cast<size_t>(r * cols + c);
+      const double v = map.values[i];
+      const cv::Rect cell(kLeft + c * kCellWidth, kTop + r * kCellHeight,
+                          kCellWidth, kCellHeight);
+      const cv::Scalar fill =
+          std::isfinite(v) ? Colour(lut, Position(map, v)) : kMissing;
+      cv::rectangle(img, cell, fill, cv::FILLED);
+      cv::rectangle(img, cell, kPaper, 1);
+      if (map.outline_above && std::isfinite(v) && v > map.threshold) {
+        cv::rectangle(
+            img,
+            cv::Rect(cell.x + 2, cell.y + 2, cell.width - 4, cell.height - 4),
+            kAlarm, 2);
+      }
+      if (!map.cell_text.empty()) {
+        Centred(&img, map.cell_text[i], cell.x + kCellWidth / 2,
+                cell.y + kCellHeight / 2, 0.42, fill);
+      }
+    }
+    Centred(&img, map.y_labels[r], kLeft - 35,
+            kTop + r * kCellHeight + kCellHeight / 2, 0.45, kPaper);
+  }
+  for (int c = 0; c < cols; ++c) {
+    Centred(&img, map.x_labels[c], kLeft + c * kCellWidth + kCellWidth / 2,
+            kTop + rows * kCellHeight + 15, 0.45, kPaper);
+  }
+  const int grid_bottom = kTop + rows * kCellHeight;
+  Centred(&img, map.x_title, kLeft + cols * kCellWidth / 2, grid_bottom + 42,
+          0.5, kPaper);
+  cv::putText(img, map.y_title, cv::Point(8, kTop - 10), kFont, 0.5, kInk, 1,
+              cv::LINE_AA);
+  if (map.outline_above) {
+    cv::putText(img, map.threshold_label, cv::Point(12, grid_bottom + 72),
+                kFont, 0.45, kAlarm, 1, cv::LINE_AA);
+  }
+
+  // Colour bar: bottom = lo, top = hi, with five labelled ticks.
+  const int bar_x = kLeft + cols * kCellWidth + 20;
+  const int bar_h = rows * kCellHeight;
+  for (int y = 0; y < bar_h; ++y) {
+    const double t = 1.0 - static_cast<double>(y) / std::max(1, bar_h - 1);
+    cv::line(img, cv::Point(bar_x, kTop + y), cv::Point(bar_x + 20, kTop + y),
+             Colour(lut, t));
+  }
+  for (int k = 0; k <= 4; ++k) {
+    const double t = k / 4.0;
+    const double value =
+        map.log_scale
+            ? std::pow(10.0, std::log10(map.lo) +
+                                 t * (std::log10(map.hi) - std::log10(map.lo)))
+            : map.lo + t * (map.hi - map.lo);
+    char label[32];
+    std::snprintf(label, sizeof(label), "%.3g", value);
+    const int y = kTop + static_cast<int>((1.0 - t) * (bar_h - 1));
+    cv::line(img, cv::Point(bar_x + 20, y), cv::Point(bar_x + 25, y), kInk);
+    cv::putText(img, label, cv::Point(bar_x + 28, y + 5), kFont, 0.4, kInk, 1,
+                cv::LINE_AA);
+  }
+  cv::putText(img, map.legend, cv::Point(bar_x - 10, kTop - 10), kFont, 0.4,
+              kInk, 1, cv::LINE_AA);
+
+  std::vector<uchar> png;
+  if (!cv::imencode(".png", img, png)) {
+    throw InputError(path + ": cannot encode the chart as PNG");
+  }
+  WriteFileAtomically(path, std::string(png.begin(), png.end()));
+}
+
+}  // namespace clothfit
