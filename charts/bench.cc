@@ -375,7 +375,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     for (const BenchRow& r : rows) {
       if (r.model == model) mine.push_back(r);
     }
-    ChartSpec speed;
+    ScatterChart speed;
     speed.title = model + ": speed against accuracy";
     speed.x_label = "wall time per fit run [s]";
     speed.y_label = "held-out relative RMS error";
@@ -385,7 +385,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     for (const BenchRow& r : mine) {
       auto [it, added] = series_of.emplace(r.group, speed.series.size());
       if (added) {
-        speed.series.push_back(ChartSeries());
+        speed.series.push_back(ScatterSeries());
         speed.series.back().name = r.group;
         speed.series.back().pareto = true;
       }
@@ -396,7 +396,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
       speed.series[it->second].points.push_back(p);
     }
     const std::string speed_png = dir + "/" + model + "_speed_accuracy.png";
-    WriteChartPng(speed, speed_png);
+    WriteScatterChartPng(speed, speed_png);
     files.push_back(speed_png);
 
     md << "\n## " << model << "\n\n![speed against accuracy](" << model
@@ -404,7 +404,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
     if (sized) {
-      ChartSpec size;
+      ScatterChart size;
       size.title = model + ": error against model size";
       size.x_label = "lobes K";
       size.y_label = "held-out relative RMS error";
@@ -413,7 +413,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
         if (!std::isfinite(r.size)) continue;
         auto [it, added] = size_series.emplace(r.group, size.series.size());
         if (added) {
-          size.series.push_back(ChartSeries());
+          size.series.push_back(ScatterSeries());
           size.series.back().name = r.group;
           size.series.back().lines = true;
         }
@@ -439,7 +439,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
            << kSlack * 100 << " %) picks size " << Number(pick) << ".\n";
       }
       const std::string size_png = dir + "/" + model + "_size.png";
-      WriteChartPng(size, size_png);
+      WriteScatterChartPng(size, size_png);
       files.push_back(size_png);
       md << "\n![error against model size](" << model << "_size.png)\n";
     }

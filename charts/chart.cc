@@ -124,7 +124,7 @@ void WritePng(const cv::Mat& image, const std::string& path) {
 
 }  // namespace
 
-std::vector<std::pair<int, int>> ParetoFront(const ChartSpec& spec) {
+std::vector<std::pair<int, int>> ParetoFront(const ScatterChart& spec) {
   std::vector<std::pair<int, int>> all;
   for (size_t s = 0; s < spec.series.size(); ++s) {
     if (!spec.series[s].pareto) continue;
@@ -152,7 +152,7 @@ std::vector<std::pair<int, int>> ParetoFront(const ChartSpec& spec) {
   return front;
 }
 
-void WriteChartPng(const ChartSpec& spec, const std::string& path) {
+void WriteScatterChartPng(const ScatterChart& spec, const std::string& path) {
   cv::Mat image(spec.height, spec.width, CV_8UC3, cv::Scalar(255, 255, 255));
   const int left = 80, right = 210, top = 45, bottom = 60;
   Axis x, y;
@@ -164,7 +164,7 @@ void WriteChartPng(const ChartSpec& spec, const std::string& path) {
   y.to = top;
   std::vector<double> xs, ys;
   int dropped = 0;
-  for (const ChartSeries& s : spec.series) {
+  for (const ScatterSeries& s : spec.series) {
     for (const ChartPoint& p : s.points) {
       if (x.Valid(p.x) && y.Valid(p.y)) {
         xs.push_back(p.x);
@@ -217,7 +217,7 @@ void WriteChartPng(const ChartSpec& spec, const std::string& path) {
 
   // Series.
   for (size_t s = 0; s < spec.series.size(); ++s) {
-    const ChartSeries& series = spec.series[s];
+    const ScatterSeries& series = spec.series[s];
     const cv::Scalar colour = SeriesColour(s);
     cv::Point previous(-1, -1);
     for (const ChartPoint& p : series.points) {

@@ -14,7 +14,7 @@ struct ChartPoint {
   bool highlight = false;  // ringed (e.g. the default configuration)
 };
 
-struct ChartSeries {
+struct ScatterSeries {
   std::string name;  // legend
   std::vector<ChartPoint> points;
   bool lines = false;  // join the points in order
@@ -22,10 +22,10 @@ struct ChartSeries {
   bool pareto = false;
 };
 
-struct ChartSpec {
+struct ScatterChart {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
-  std::vector<ChartSeries> series;
+  std::vector<ScatterSeries> series;
   // Mark the Pareto front (smallest y for every x and below) over the
   // points of the series with pareto = true.
   bool pareto = false;
@@ -35,11 +35,11 @@ struct ChartSpec {
 // Indices (series, point) of the Pareto-optimal points among the series
 // with pareto = true: no other point has both x <= and y <= with one
 // strictly smaller. Sorted by x.
-std::vector<std::pair<int, int>> ParetoFront(const ChartSpec& spec);
+std::vector<std::pair<int, int>> ParetoFront(const ScatterChart& spec);
 
 // Throws InputError when the file cannot be written. Non-finite points (and
 // non-positive ones on a log axis) are left out and counted in the title.
-void WriteChartPng(const ChartSpec& spec, const std::string& path);
+void WriteScatterChartPng(const ScatterChart& spec, const std::string& path);
 
 // One panel of a polar plot: a slice of a BRDF in the plane of incidence,
 // angle = theta_o in degrees in [-90, 90] (negative: the side of the light),

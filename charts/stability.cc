@@ -206,7 +206,7 @@ std::vector<std::string> WriteStabilityReport(
   WriteFileAtomically(dir + "/stability.csv", csv.str());
   files.push_back(dir + "/stability.csv");
   for (const std::string& knob : knobs) {
-    ChartSpec chart;
+    ScatterChart chart;
     chart.title = "success rate against " + knob;
     chart.x_label = knob + " (level index; labels in the table)";
     chart.y_label = "success rate";
@@ -219,7 +219,7 @@ std::vector<std::string> WriteStabilityReport(
       if (r.knob != knob) continue;
       auto [it, added] = series.emplace(r.fitter, chart.series.size());
       if (added) {
-        chart.series.push_back(ChartSeries());
+        chart.series.push_back(ScatterSeries());
         chart.series.back().name = r.fitter;
         chart.series.back().lines = true;
       }
@@ -233,7 +233,7 @@ std::vector<std::string> WriteStabilityReport(
          << " |\n";
     }
     const std::string png = dir + "/stability_" + knob + ".png";
-    WriteChartPng(chart, png);
+    WriteScatterChartPng(chart, png);
     files.push_back(png);
   }
   WriteFileAtomically(dir + "/stability.md", md.str());

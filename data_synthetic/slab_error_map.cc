@@ -7,7 +7,7 @@
 
 #include "data_synthetic/slab_monte_carlo.h"
 #include "io/atomic_file.h"
-#include "io/heat_map.h"
+#include "charts/heat_map.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 

@@ -6,7 +6,7 @@
 
 #include "data_synthetic/holes_truth.h"
 #include "io/atomic_file.h"
-#include "io/chart_png.h"
+#include "charts/chart_png.h"
 
 namespace clothfit {
 namespace {

@@ -23,10 +23,10 @@ ChartPoint P(double x, double y) {
   return p;
 }
 
-ChartSpec TwoSeries() {
-  ChartSpec spec;
+ScatterChart TwoSeries() {
+  ScatterChart spec;
   spec.pareto = true;
-  ChartSeries a, b;
+  ScatterSeries a, b;
   a.pareto = b.pareto = true;
   // (time, error): (1, 5) (2, 3) (4, 4) | (3, 1) (5, 2) (0.5, 9)
   a.points = {P(1, 5), P(2, 3), P(4, 4)};
@@ -63,15 +63,15 @@ bool IsPng(const std::string& path) {
 
 TEST(ChartTest, ChartsAreWrittenWithAndWithoutDrawablePoints) {
   const fs::path dir = testing_util::FreshTestDir("charts_test_");
-  ChartSpec spec = TwoSeries();
+  ScatterChart spec = TwoSeries();
   spec.log_x = true;
   spec.series[0].points.push_back(P(-1.0, 2.0));  // not on a log axis
   spec.series[0].points.push_back(P(NAN, 2.0));
   const std::string path = (dir / "c.png").string();
-  WriteChartPng(spec, path);
+  WriteScatterChartPng(spec, path);
   EXPECT_TRUE(IsPng(path));
-  ChartSpec empty;
-  WriteChartPng(empty, (dir / "e.png").string());
+  ScatterChart empty;
+  WriteScatterChartPng(empty, (dir / "e.png").string());
   EXPECT_TRUE(IsPng((dir / "e.png").string()));
   PolarPanel panel;
   panel.model_angle_deg = {-10, 0, 10};
@@ -80,7 +80,7 @@ TEST(ChartTest, ChartsAreWrittenWithAndWithoutDrawablePoints) {
   panel.measured_value = {1.5};
   WritePolarPlotPng({panel, panel}, "t", (dir / "p.png").string());
   EXPECT_TRUE(IsPng((dir / "p.png").string()));
-  EXPECT_THROW(WriteChartPng(spec, (dir / "missing" / "c.png").string()),
+  EXPECT_THROW(WriteScatterChartPng(spec, (dir / "missing" / "c.png").string()),
                std::exception);
 }
 

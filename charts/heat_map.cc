@@ -1,4 +1,4 @@
-#include "io/heat_map.h"
+#include "charts/heat_map.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "io/chart_png.h"
+#include "charts/chart_png.h"
 
 #include <algorithm>
 #include <cmath>
