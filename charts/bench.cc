@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -312,6 +313,14 @@ std::string Number(double v) {
   return std::isfinite(v) ? text_util::FormatNumber(v) : "nan";
 }
 
+// Four significant digits, for the summary's tables.
+std::string Short(double v) {
+  if (!std::isfinite(v)) return "nan";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.4g", v);
+  return buffer;
+}
+
 }  // namespace
 
 std::vector<BenchRow> RunBench(const BenchOptions& options) {
@@ -448,10 +457,10 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
           "|---|---|---|---|---|---|---|\n";
     for (const BenchRow& r : mine) {
       md << "| " << r.config << (r.is_default ? " **(default)**" : "") << " | "
-         << Number(r.wall_median_s) << " [" << Number(r.wall_min_s) << ", "
-         << Number(r.wall_max_s) << "] | " << Number(r.cpu_median_s) << " | "
-         << Number(r.peak_mb) << " | " << Number(r.value_error) << " | "
-         << Number(r.param_error) << " | " << (r.success ? "yes" : "no")
+         << Short(r.wall_median_s) << " [" << Short(r.wall_min_s) << ", "
+         << Short(r.wall_max_s) << "] | " << Short(r.cpu_median_s) << " | "
+         << Short(r.peak_mb) << " | " << Short(r.value_error) << " | "
+         << Short(r.param_error) << " | " << (r.success ? "yes" : "no")
          << " |\n";
     }
   }
