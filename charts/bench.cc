@@ -89,19 +89,6 @@ BenchRow Measure(const BenchOptions& options,
   return row;
 }
 
-// Relative RMS of `fitted` against `truth` at the rows' directions.
-double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
-                    const std::vector<TableRow>& rows, Quantity q) {
-  double se = 0.0, ss = 0.0;
-  for (const TableRow& row : rows) {
-    const glm::dvec3 a = Evaluate(fitted, row.wi, row.wo, q);
-    const glm::dvec3 b = Evaluate(truth, row.wi, row.wo, q);
-    se += glm::dot(a - b, a - b);
-    ss += glm::dot(b, b);
-  }
-  return ss > 0.0 ? std::sqrt(se / ss) : kNaN;
-}
-
 // Largest relative difference of the entries whose truth is not 0.
 double LargestRelativeError(const std::vector<double>& fitted,
                             const std::vector<double>& truth) {
@@ -322,6 +309,18 @@ std::string Short(double v) {
 }
 
 }  // namespace
+
+double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
+                    const std::vector<TableRow>& rows, Quantity q) {
+  double se = 0.0, ss = 0.0;
+  for (const TableRow& row : rows) {
+    const glm::dvec3 a = Evaluate(fitted, row.wi, row.wo, q);
+    const glm::dvec3 b = Evaluate(truth, row.wi, row.wo, q);
+    se += glm::dot(a - b, a - b);
+    ss += glm::dot(b, b);
+  }
+  return ss > 0.0 ? std::sqrt(se / ss) : kNaN;
+}
 
 std::vector<BenchRow> RunBench(const BenchOptions& options) {
   std::vector<BenchRow> rows;

@@ -16,6 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "io/table.h"
+#include "models/evaluate.h"
+
 namespace clothfit {
 
 struct BenchOptions {
@@ -43,6 +46,11 @@ struct BenchRow {
 };
 
 std::vector<BenchRow> RunBench(const BenchOptions& options);
+
+// Relative RMS of `fitted` against `truth` at the rows' directions (the
+// quantity q): the held-out error of the thread and cloth fits.
+double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
+                    const std::vector<TableRow>& rows, Quantity q);
 
 // One row per configuration; throws InputError when it cannot be written.
 void WriteBenchCsv(const std::vector<BenchRow>& rows, const std::string& path);

@@ -31,16 +31,11 @@ struct Knob {
   std::function<std::string(double)> label;
 };
 
+// Held-out error; a fit without any (no truth signal) counts as a failure.
 double Error(const ModelParams& fitted, const ModelParams& truth,
              const std::vector<TableRow>& rows) {
-  double se = 0.0, ss = 0.0;
-  for (const TableRow& row : rows) {
-    const glm::dvec3 a = Evaluate(fitted, row.wi, row.wo, Quantity::kBrdf);
-    const glm::dvec3 b = Evaluate(truth, row.wi, row.wo, Quantity::kBrdf);
-    se += glm::dot(a - b, a - b);
-    ss += glm::dot(b, b);
-  }
-  return ss > 0.0 ? std::sqrt(se / ss) : HUGE_VAL;
+  const double e = HeldOutError(fitted, truth, rows, Quantity::kBrdf);
+  return std::isnan(e) ? HUGE_VAL : e;
 }
 
 // Rows of a hemisphere sample: all (coverage 90), theta <= level (near
