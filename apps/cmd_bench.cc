@@ -1,6 +1,7 @@
 // clothfit bench: the speed-accuracy sweep of every fitter (issue 7,
 // charts/bench.h).
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <iostream>
@@ -35,6 +36,10 @@ int RunBench(int argc, char** argv) {
               "all");
   args.Option("seed", "S", "random seed of the synthetic data", "1");
   args.Option("out", "DIR", "output folder (created if missing)");
+  args.Flag("no-peer", "leave out the SciPy least_squares peer");
+  args.Option("python", "PATH",
+              "Python 3 with SciPy for the peer (python3-scipy)",
+              "/usr/bin/python3 if present, else python3");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string dir = args.Required("out");
   BenchOptions options;
@@ -58,6 +63,14 @@ int RunBench(int argc, char** argv) {
   }
   ::mkdir(dir.c_str(), 0777);  // an existing folder is fine
   CheckWritable(dir + "/bench.csv");
+  if (!args.Has("no-peer")) {
+    options.peer_script = CLOTHFIT_PEER_SCRIPT;
+    options.python = args.Has("python") ? args.Get("python")
+                     : ::access("/usr/bin/python3", X_OK) == 0
+                         ? "/usr/bin/python3"
+                         : "python3";
+    options.scratch_dir = dir;
+  }
   options.progress = [](const std::string& what) {
     std::fprintf(stderr, "bench: %s\n", what.c_str());
   };
@@ -68,10 +81,14 @@ int RunBench(int argc, char** argv) {
     }
     return 0;
   }
-  const std::vector<BenchRow> rows = clothfit::RunBench(options);
+  std::string peer_note;
+  const std::vector<BenchRow> rows = clothfit::RunBench(options, &peer_note);
+  if (!peer_note.empty())
+    std::fprintf(stderr, "bench: %s\n", peer_note.c_str());
   WriteBenchCsv(rows, dir + "/bench.csv");
   std::printf("wrote %s/bench.csv\n", dir.c_str());
-  for (const std::string& file : WriteBenchReport(rows, options, dir)) {
+  for (const std::string& file :
+       WriteBenchReport(rows, options, dir, peer_note)) {
     std::printf("wrote %s\n", file.c_str());
   }
   return 0;

@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "charts/chart.h"
@@ -18,6 +20,7 @@
 #include "fitting/lafortune_mip.h"
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
+#include "io/table.h"
 #include "io/text_util.h"
 #include "models/presets.h"
 
@@ -206,7 +209,61 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
 
 // Lafortune: virtual-gonio plain weave; every 4th light held out. Knobs:
 // lobes K, the lookup table, the solver tolerance, threads, mip levels.
-void BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
+// The SciPy peer on the same train/test split: one row per lobe count, its
+// time the script's own (the fits, not Python's start or the CSV parsing),
+// CPU = wall (one thread). Returns why it did not run, or "".
+std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
+                    const MeasurementTable& test, const std::vector<int>& lobes,
+                    std::vector<BenchRow>* rows) {
+  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
+  const std::string dir = o.scratch_dir.empty() ? "/tmp" : o.scratch_dir;
+  const std::string train_csv = dir + "/peer_train.csv";
+  const std::string test_csv = dir + "/peer_test.csv";
+  const std::string json_out = dir + "/peer_out.json";
+  WriteTable(train, train_csv);
+  WriteTable(test, test_csv);
+  std::string note;
+  for (int k : lobes) {
+    Say(o, "lafortune: SciPy peer, lobes=" + std::to_string(k));
+    std::vector<double> seconds;
+    nlohmann::json result;
+    for (int r = 0; r < std::max(1, o.repeats) && note.empty(); ++r) {
+      const std::string command = "'" + o.python + "' '" + o.peer_script +
+                                  "' '" + train_csv + "' '" + test_csv + "' " +
+                                  std::to_string(k) + " > '" + json_out +
+                                  "' 2>/dev/null";
+      const int status = std::system(command.c_str());
+      if (status != 0) {
+        note = "SciPy peer skipped: '" + o.python + " " + o.peer_script +
+               "' failed (is python3-scipy installed?)";
+        break;
+      }
+      result = nlohmann::json::parse(ReadFileToString(json_out));
+      seconds.push_back(result.at("seconds").get<double>());
+    }
+    if (!note.empty()) break;
+    BenchRow row;
+    row.model = "lafortune";
+    row.config = "scipy least_squares lobes=" + std::to_string(k) + " lut=off";
+    row.group = "SciPy peer";
+    row.repeats = static_cast<int>(seconds.size());
+    row.wall_median_s = row.cpu_median_s = Median(seconds);
+    row.wall_min_s = *std::min_element(seconds.begin(), seconds.end());
+    row.wall_max_s = *std::max_element(seconds.begin(), seconds.end());
+    row.peak_mb = kNaN;  // another process
+    row.value_error = result.at("value_error").get<double>();
+    row.param_error = kNaN;
+    row.size = kNaN;
+    row.success = true;
+    rows->push_back(row);
+  }
+  std::remove(train_csv.c_str());
+  std::remove(test_csv.c_str());
+  std::remove(json_out.c_str());
+  return note;
+}
+
+std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
   VirtualGonioOptions gonio;
   gonio.texels = o.quick ? 2 : 8;
   gonio.directions = o.quick ? 4 : 8;
@@ -289,6 +346,8 @@ void BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
         k.lobes == 2 && k.lut && k.ftol_exp == 5 && k.threads == 0 && !k.mip;
     rows->push_back(row);
   }
+  return RunPeer(o, train, test,
+                 o.quick ? std::vector<int>{2} : std::vector<int>{1, 2}, rows);
 }
 
 bool Wanted(const BenchOptions& o, const std::string& model) {
@@ -322,11 +381,14 @@ double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
   return ss > 0.0 ? std::sqrt(se / ss) : kNaN;
 }
 
-std::vector<BenchRow> RunBench(const BenchOptions& options) {
+std::vector<BenchRow> RunBench(const BenchOptions& options,
+                               std::string* peer_note) {
   std::vector<BenchRow> rows;
+  std::string note = "the SciPy peer runs on the Lafortune problems only";
   if (Wanted(options, "thread")) BenchThread(options, &rows);
   if (Wanted(options, "cloth")) BenchCloth(options, &rows);
-  if (Wanted(options, "lafortune")) BenchLafortune(options, &rows);
+  if (Wanted(options, "lafortune")) note = BenchLafortune(options, &rows);
+  if (peer_note) *peer_note = note;
   return rows;
 }
 
@@ -364,7 +426,8 @@ double ToleranceChoice(const std::vector<BenchRow>& rows, double slack) {
 
 std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
                                           const BenchOptions& options,
-                                          const std::string& dir) {
+                                          const std::string& dir,
+                                          const std::string& peer_note) {
   std::vector<std::string> files;
   std::vector<std::string> models;
   for (const BenchRow& r : rows) {
@@ -409,6 +472,27 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
 
     md << "\n## " << model << "\n\n![speed against accuracy](" << model
        << "_speed_accuracy.png)\n";
+    // The peer beside clothfit's same problem (lobes K, no lookup table).
+    for (const BenchRow& peer : mine) {
+      if (peer.group != "SciPy peer") continue;
+      const std::string lobes =
+          peer.config.substr(peer.config.find("lobes="), 7);
+      for (const BenchRow& r : mine) {
+        if (r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all", 0) !=
+            0) {
+          continue;
+        }
+        md << "\nSciPy peer, " << lobes
+           << " without lookup table: " << Short(peer.cpu_median_s)
+           << " s CPU against clothfit's " << Short(r.cpu_median_s) << " s ("
+           << Short(peer.cpu_median_s / r.cpu_median_s)
+           << " x); held-out error " << Short(peer.value_error) << " against "
+           << Short(r.value_error) << ".\n";
+      }
+    }
+    if (model == "lafortune" && !peer_note.empty()) {
+      md << "\n" << peer_note << ".\n";
+    }
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
     if (sized) {

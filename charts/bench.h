@@ -28,6 +28,12 @@ struct BenchOptions {
   std::vector<std::string> models;
   uint64_t seed = 1;
   std::function<void(const std::string&)> progress;  // may be empty
+  // The peer: SciPy's least_squares on the same Lafortune problems
+  // (benchmarks/peer/scipy_lafortune.py); skipped with a message (in
+  // peer_note) where Python 3 with SciPy is missing. Empty: no peer.
+  std::string peer_script;
+  std::string python = "python3";
+  std::string scratch_dir;  // where the peer's input tables are written
 };
 
 struct BenchRow {
@@ -45,7 +51,9 @@ struct BenchRow {
   std::string group;          // series of the charts (e.g. "lut=on")
 };
 
-std::vector<BenchRow> RunBench(const BenchOptions& options);
+// peer_note (may be null): what became of the peer ("" when it ran).
+std::vector<BenchRow> RunBench(const BenchOptions& options,
+                               std::string* peer_note = nullptr);
 
 // Relative RMS of `fitted` against `truth` at the rows' directions (the
 // quantity q): the held-out error of the thread and cloth fits.
@@ -62,7 +70,8 @@ void WriteBenchCsv(const std::vector<BenchRow>& rows, const std::string& path);
 // written.
 std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
                                           const BenchOptions& options,
-                                          const std::string& dir);
+                                          const std::string& dir,
+                                          const std::string& peer_note = "");
 
 // The smallest size whose error is within `slack` (relative) of the best
 // error among the rows of one model and group: the model `--tolerance`

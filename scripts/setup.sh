@@ -11,6 +11,7 @@ PACKAGES=(
   libceres-dev libeigen3-dev libglm-dev nlohmann-json3-dev
   libopencv-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-scipy  # the bench's peer (benchmarks/peer/); optional at run time
 )
 
 missing=()

@@ -621,8 +621,34 @@ TEST(CliTest, BenchQuickWritesCsvChartsAndSummary) {
   const std::string summary = ReadFileToString(out + "/summary.md");
   EXPECT_NE(summary.find("(default)"), std::string::npos);
   EXPECT_NE(summary.find("--tolerance"), std::string::npos);
+  // The SciPy peer: side by side where Debian's python3-scipy is installed
+  // (scripts/setup.sh installs it), else skipped with a message.
+  const bool scipy =
+      std::system("/usr/bin/python3 -c 'import scipy' 2>/dev/null") == 0;
+  if (scipy) {
+    EXPECT_NE(summary.find("SciPy peer, lobes=2 without lookup table"),
+              std::string::npos)
+        << summary;
+    EXPECT_NE(ReadFileToString(out + "/bench.csv")
+                  .find("\"scipy least_squares lobes=2 lut=off\""),
+              std::string::npos);
+  } else {
+    EXPECT_NE(summary.find("SciPy peer skipped"), std::string::npos) << summary;
+  }
   ExpectBadInput(dir, {"bench", "--quick", "--models", "teapot", "--out", out},
                  {"teapot"});
+  // Without a usable Python the peer is skipped with a message, not an
+  // error.
+  const std::string no_peer = (dir / "no_peer").string();
+  const RunResult skipped = RunClothfit(
+      dir, {"bench", "--quick", "--repeats", "1", "--models", "lafortune",
+            "--python", (dir / "no_python").string(), "--out", no_peer});
+  ASSERT_EQ(skipped.status, 0) << Describe(skipped);
+  EXPECT_NE(skipped.err.find("SciPy peer skipped"), std::string::npos)
+      << skipped.err;
+  EXPECT_NE(
+      ReadFileToString(no_peer + "/summary.md").find("SciPy peer skipped"),
+      std::string::npos);
 }
 
 // bench --stability --quick: success rates per knob level; the thread fit
