@@ -32,8 +32,8 @@ int RunBench(int argc, char** argv) {
             "instead: success rate against noise, start distance, angular "
             "coverage and outliers (DIR/stability.*)");
   args.Option("repeats", "N", "timed runs per configuration", "3");
-  args.Option("models", "LIST", "comma-separated: thread,cloth,lafortune",
-              "all");
+  args.Option("models", "LIST",
+              "comma-separated: thread,cloth,lafortune,slab,holes", "all");
   args.Option("seed", "S", "random seed of the synthetic data", "1");
   args.Option("out", "DIR", "output folder (created if missing)");
   args.Flag("no-peer", "leave out the SciPy least_squares peer");
@@ -54,9 +54,10 @@ int RunBench(int argc, char** argv) {
     std::stringstream list(args.Get("models"));
     std::string name;
     while (std::getline(list, name, ',')) {
-      if (name != "thread" && name != "cloth" && name != "lafortune") {
+      if (name != "thread" && name != "cloth" && name != "lafortune" &&
+          name != "slab" && name != "holes") {
         args.Fail("option '--models': unknown model '" + name +
-                  "' (thread, cloth, lafortune)");
+                  "' (thread, cloth, lafortune, slab, holes)");
       }
       options.models.push_back(name);
     }

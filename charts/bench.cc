@@ -14,11 +14,15 @@
 #include <sstream>
 
 #include "charts/chart.h"
+#include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "fitting/cloth_fit.h"
+#include "fitting/holes_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
+#include "holes/hole_texture.h"
 #include "io/atomic_file.h"
 #include "io/table.h"
 #include "io/text_util.h"
@@ -350,6 +354,129 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
                  o.quick ? std::vector<int>{2} : std::vector<int>{1, 2}, rows);
 }
 
+// Slab: tau 0.05, albedo (0.4, 0.3, 0.2) (inside the single-scattering
+// regime, docs/slab.md), reflection and transmission rows, 2 % noise;
+// knobs: solver starts and one tau per channel.
+void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
+  SlabParams truth;
+  truth.tau = glm::dvec3(0.05);
+  truth.albedo = glm::dvec3(0.4, 0.3, 0.2);
+  DirectionSampling sampling;
+  sampling.rows = o.quick ? 300 : 3000;
+  sampling.full_sphere_out = true;
+  SynthOptions synth;
+  synth.noise = 0.02;
+  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
+  Random random(o.seed + 3000);
+  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  std::vector<double> truth_values(SlabParams::kSize);
+  ToArray(truth, truth_values.data());
+  for (int starts :
+       o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4}) {
+    for (bool per_channel : {false, true}) {
+      const std::string config =
+          "starts=" + std::to_string(starts) +
+          " per_channel_tau=" + (per_channel ? "on" : "off");
+      Say(o, "slab: " + config);
+      SlabFitOptions fit;
+      fit.solve_starts = starts;
+      fit.per_channel_tau = per_channel;
+      BenchRow row = Measure(o, [&]() {
+        const SlabFitResult r = FitSlab({table}, fit);
+        Outcome out;
+        out.success = r.report.usable && r.report.converged;
+        out.value_error =
+            HeldOutError(r.params, truth, held_out, table.quantity);
+        std::vector<double> values(SlabParams::kSize);
+        ToArray(r.params, values.data());
+        out.param_error = LargestRelativeError(values, truth_values);
+        return out;
+      });
+      row.model = "slab";
+      row.config = config;
+      row.group =
+          std::string("per-channel tau ") + (per_channel ? "on" : "off");
+      const SlabFitOptions defaults;
+      row.is_default = starts == defaults.solve_starts &&
+                       per_channel == defaults.per_channel_tau;
+      rows->push_back(row);
+    }
+  }
+}
+
+// Holes: the thickness of a random mask's opaque texels from ray-traced
+// ground-truth transmittance at 5 x 4 views; held out: 4 other azimuths.
+// Knobs: the method (Algorithm 3.1, the extension) and the pyramid level
+// evaluated (0 or the top).
+void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
+  const int size = o.quick ? 16 : 64;
+  const Mask mask = RandomMask(size, size, 0.5, o.seed);
+  const HoleTexture texture = AnalyzeMask(mask, true);
+  HolesParams truth;
+  truth.thickness_texels = 0.8;
+  auto table_at = [&](const std::vector<double>& phis) {
+    MeasurementTable table;
+    table.quantity = Quantity::kTransmittance;
+    table.channels = 1;
+    for (double theta : {0.0, 15.0, 30.0, 45.0, 55.0}) {
+      for (double phi : phis) {
+        TableRow row;
+        row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
+        const HoleRatios ratios =
+            HoleTruthTile(mask, ViewOffset(truth.thickness_texels, row.wo),
+                          o.quick ? 16 : 32);
+        row.value = glm::dvec3(HolesTransmittance(truth, ratios).x);
+        table.rows.push_back(row);
+      }
+    }
+    return table;
+  };
+  const MeasurementTable table = table_at({0.0, 90.0, 180.0, 270.0});
+  const MeasurementTable held_out = table_at({45.0, 135.0, 225.0, 315.0});
+  for (HoleMethod method : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
+    for (int level : {0, -1}) {
+      const std::string config = std::string("method=") +
+                                 HoleMethodName(method) +
+                                 " level=" + (level < 0 ? "top" : "0");
+      Say(o, "holes: " + config);
+      HolesFitOptions fit;
+      fit.method = method;
+      fit.level = level;
+      BenchRow row = Measure(o, [&]() {
+        const HolesFitResult r = FitHoles(table, texture, fit);
+        Outcome out;
+        out.success = r.report.usable && r.report.converged;
+        // Held out: the fitted thickness's transmittance (the same method)
+        // against the ground truth at the other azimuths.
+        const LevelTexels texels = GatherLevel(
+            texture, level < 0 ? texture.counts.levels() - 1 : level);
+        double se = 0.0, ss = 0.0;
+        for (const TableRow& row : held_out.rows) {
+          const double m =
+              HolesTransmittance(
+                  r.params,
+                  TileRatios(texels, method,
+                             ViewOffset(r.params.thickness_texels, row.wo)))
+                  .x;
+          se += (m - row.value.x) * (m - row.value.x);
+          ss += row.value.x * row.value.x;
+        }
+        out.value_error = ss > 0.0 ? std::sqrt(se / ss) : kNaN;
+        out.param_error =
+            std::abs(r.params.thickness_texels - truth.thickness_texels) /
+            truth.thickness_texels;
+        return out;
+      });
+      row.model = "holes";
+      row.config = config;
+      row.group = HoleMethodName(method);
+      const HolesFitOptions defaults;
+      row.is_default = method == defaults.method && level == defaults.level;
+      rows->push_back(row);
+    }
+  }
+}
+
 bool Wanted(const BenchOptions& o, const std::string& model) {
   return o.models.empty() ||
          std::find(o.models.begin(), o.models.end(), model) != o.models.end();
@@ -387,6 +514,8 @@ std::vector<BenchRow> RunBench(const BenchOptions& options,
   std::string note = "the SciPy peer runs on the Lafortune problems only";
   if (Wanted(options, "thread")) BenchThread(options, &rows);
   if (Wanted(options, "cloth")) BenchCloth(options, &rows);
+  if (Wanted(options, "slab")) BenchSlab(options, &rows);
+  if (Wanted(options, "holes")) BenchHoles(options, &rows);
   if (Wanted(options, "lafortune")) note = BenchLafortune(options, &rows);
   if (peer_note) *peer_note = note;
   return rows;

@@ -24,7 +24,8 @@ namespace clothfit {
 struct BenchOptions {
   bool quick = false;  // seconds, for the test suite: small data, few knobs
   int repeats = 3;     // timed runs per configuration (median, min, max)
-  // Fitters to run ("thread", "cloth", "lafortune"); empty = all.
+  // Fitters to run ("thread", "cloth", "lafortune", "slab", "holes");
+  // empty = all.
   std::vector<std::string> models;
   uint64_t seed = 1;
   std::function<void(const std::string&)> progress;  // may be empty

@@ -612,7 +612,7 @@ TEST(CliTest, BenchQuickWritesCsvChartsAndSummary) {
     EXPECT_GE(v[4], v[2]);                                    // max >= median
     EXPECT_TRUE(std::isfinite(v[7]) && v[7] >= 0.0) << line;  // error
   }
-  for (const char* model : {"thread", "cloth", "lafortune"}) {
+  for (const char* model : {"thread", "cloth", "lafortune", "slab", "holes"}) {
     EXPECT_GE(rows[model], 2) << model;
     EXPECT_EQ(defaults[model], 1) << model;
     EXPECT_GT(fs::file_size(out + "/" + model + "_speed_accuracy.png"), 1000u);
