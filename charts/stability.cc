@@ -9,6 +9,7 @@
 #include "charts/chart.h"
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/cloth_fit.h"
+#include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
 #include "io/text_util.h"
@@ -115,15 +116,22 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
        }},
       {"outliers", {0.0, 0.01, 0.05, 0.1, 0.2}, percent},
   };
+  // The slab: tau 0.05, albedo (0.4, 0.3, 0.2), inside its regime.
+  SlabParams slab;
+  slab.tau = glm::dvec3(0.05);
+  slab.albedo = glm::dvec3(0.4, 0.3, 0.2);
+  enum class Kind { kThread, kCloth, kSlab };
   struct Fitter {
     std::string name;
-    bool cloth;
+    Kind kind;
     Loss loss;
   };
-  std::vector<Fitter> fitters = {{"thread", false, Loss::kNone},
-                                 {"thread+cauchy", false, Loss::kCauchy},
-                                 {"cloth", true, Loss::kNone}};
-  if (options.quick) fitters.pop_back();  // the cloth fit takes seconds
+  std::vector<Fitter> fitters = {
+      {"thread", Kind::kThread, Loss::kNone},
+      {"thread+cauchy", Kind::kThread, Loss::kCauchy},
+      {"slab", Kind::kSlab, Loss::kNone}};
+  // The cloth fit takes seconds: not in the quick study.
+  if (!options.quick) fitters.push_back({"cloth", Kind::kCloth, Loss::kNone});
   std::vector<StabilityRow> out;
   for (const Knob& knob : knobs) {
     for (const Fitter& fitter : fitters) {
@@ -143,14 +151,27 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
         for (int s = 0; s < seeds; ++s) {
           const uint64_t seed = options.seed * 1000 + 17 * s;
           const ModelParams truth =
-              fitter.cloth ? ModelParams(satin) : ModelParams(thread);
-          const Trial trial =
-              MakeTrial(truth, !fitter.cloth, knob.name, level,
-                        fitter.cloth ? cloth_rows : thread_rows, seed);
+              fitter.kind == Kind::kCloth  ? ModelParams(satin)
+              : fitter.kind == Kind::kSlab ? ModelParams(slab)
+                                           : ModelParams(thread);
+          // Thread and slab tables have wo over the whole sphere.
+          const Trial trial = MakeTrial(
+              truth, fitter.kind != Kind::kCloth, knob.name, level,
+              fitter.kind == Kind::kCloth ? cloth_rows : thread_rows, seed);
           const double factor = knob.name == "start_distance" ? level : 1.0;
           bool ok = false;
           double error = HUGE_VAL;
-          if (fitter.cloth) {
+          if (fitter.kind == Kind::kSlab) {
+            SlabFitOptions fit;
+            fit.solver.loss = fitter.loss;
+            SlabParams start = slab;  // tau and albedo x factor
+            start.tau *= factor;
+            start.albedo = glm::min(start.albedo * factor, glm::dvec3(1.0));
+            fit.init = start;
+            const SlabFitResult r = FitSlab({trial.table}, fit);
+            ok = r.report.usable && r.report.converged;
+            error = Error(r.params, slab, trial.held_out);
+          } else if (fitter.kind == Kind::kCloth) {
             ClothParams start = GenericClothStart(satin);
             for (ClothThread& t : start.threads) {
               t.params = FarThread(t.params, factor);

@@ -7,9 +7,9 @@
 // Success: the fit reports usable and converged (exit status 0) and its
 // model is within kStabilitySuccessError (relative RMS) of the truth at
 // held-out directions. Data: synthetic, from the satin's warp thread
-// (thread fitter) and the whole satin (cloth fitter, from the generic
-// start), brdf tables with multiplicative Gaussian noise (2 % unless the
-// noise is the knob).
+// (thread fitter), the whole satin (cloth fitter, from the generic start)
+// and a thin slab (tau 0.05), brdf tables with multiplicative Gaussian
+// noise (2 % unless the noise is the knob).
 #pragma once
 
 #include <string>
@@ -22,7 +22,7 @@ namespace clothfit {
 constexpr double kStabilitySuccessError = 0.05;
 
 struct StabilityRow {
-  std::string fitter;  // "thread", "cloth", "thread+cauchy", ...
+  std::string fitter;  // "thread", "cloth", "slab", "thread+cauchy"
   std::string knob;    // "noise", "start_distance", "coverage", "outliers"
   double level = 0.0;  // the knob's value (coverage: the largest polar angle
                        // in degrees; negative: grazing only, theta >= -level)
