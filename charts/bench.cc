@@ -209,6 +209,45 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
                      k.starts == defaults.solve_starts;
     rows->push_back(row);
   }
+  // Model size: each thread's tangent curve sampled at T points where it
+  // has more offsets than that (as the --tolerance ladder does,
+  // fitting/model_selection.h); the largest T is the weave as given.
+  int given = 0;
+  for (const ClothThread& th : start.threads) {
+    given = std::max(given, static_cast<int>(th.offsets_deg.size()));
+  }
+  std::vector<int> sizes =
+      o.quick ? std::vector<int>{1} : std::vector<int>{1, 2, 4};
+  sizes.push_back(given);
+  for (int t : sizes) {
+    ClothParams resampled = start;
+    for (ClothThread& th : resampled.threads) {
+      if (th.curve.lengths.empty() ||
+          static_cast<int>(th.offsets_deg.size()) <= t) {
+        continue;
+      }
+      th.curve.samples = t;
+      if (!ValidateTangentCurve(th.curve).empty()) continue;
+      th.offsets_deg = SampleTangentCurve(th.curve);
+    }
+    const std::string config =
+        "tangent_samples=" + (t == given
+                                  ? "as given (" + std::to_string(t) + ")"
+                                  : std::to_string(t));
+    Say(o, "cloth: " + config);
+    BenchRow row = Measure(o, [&]() {
+      const ClothFitResult r = FitCloth(table, resampled, ClothFitOptions());
+      Outcome out;
+      out.success = r.report.usable && r.report.converged;
+      out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+      return out;
+    });
+    row.model = "cloth";
+    row.config = config;
+    row.group = "tangent samples";
+    row.size = t;
+    rows->push_back(row);
+  }
 }
 
 // Lafortune: virtual-gonio plain weave; every 4th light held out. Knobs:
@@ -627,7 +666,8 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     if (sized) {
       ScatterChart size;
       size.title = model + ": error against model size";
-      size.x_label = "lobes K";
+      size.x_label =
+          model == "cloth" ? "tangent samples T per thread" : "lobes K";
       size.y_label = "held-out relative RMS error";
       std::map<std::string, size_t> size_series;
       for (const BenchRow& r : mine) {
