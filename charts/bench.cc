@@ -20,6 +20,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/holes_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/model_selection.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "holes/hole_texture.h"
@@ -220,16 +221,7 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
       o.quick ? std::vector<int>{1} : std::vector<int>{1, 2, 4};
   sizes.push_back(given);
   for (int t : sizes) {
-    ClothParams resampled = start;
-    for (ClothThread& th : resampled.threads) {
-      if (th.curve.lengths.empty() ||
-          static_cast<int>(th.offsets_deg.size()) <= t) {
-        continue;
-      }
-      th.curve.samples = t;
-      if (!ValidateTangentCurve(th.curve).empty()) continue;
-      th.offsets_deg = SampleTangentCurve(th.curve);
-    }
+    const ClothParams resampled = ResampleTangentCurves(start, t, nullptr);
     const std::string config =
         "tangent_samples=" + (t == given
                                   ? "as given (" + std::to_string(t) + ")"

@@ -124,6 +124,22 @@ std::string SelectionReportJson(const SelectionReport& r) {
   return j.dump();
 }
 
+ClothParams ResampleTangentCurves(const ClothParams& c, int t, bool* changed) {
+  ClothParams out = c;
+  if (changed) *changed = false;
+  for (ClothThread& th : out.threads) {
+    if (th.curve.lengths.empty() ||
+        static_cast<int>(th.offsets_deg.size()) <= t) {
+      continue;
+    }
+    th.curve.samples = t;
+    if (!ValidateTangentCurve(th.curve).empty()) continue;
+    th.offsets_deg = SampleTangentCurve(th.curve);
+    if (changed) *changed = true;
+  }
+  return out;
+}
+
 ClothSelection SelectClothModel(const MeasurementTable& table,
                                 const ClothParams& init,
                                 const ClothFitOptions& options,
@@ -136,18 +152,8 @@ ClothSelection SelectClothModel(const MeasurementTable& table,
   }
   std::vector<std::pair<std::string, ClothParams>> weaves;
   for (int t = 1; t < max_samples; t *= 2) {
-    ClothParams c = init;
     bool changed = false;
-    for (ClothThread& th : c.threads) {
-      if (th.curve.lengths.empty() ||
-          static_cast<int>(th.offsets_deg.size()) <= t) {
-        continue;
-      }
-      th.curve.samples = t;
-      if (!ValidateTangentCurve(th.curve).empty()) continue;
-      th.offsets_deg = SampleTangentCurve(th.curve);
-      changed = true;
-    }
+    const ClothParams c = ResampleTangentCurves(init, t, &changed);
     if (changed) weaves.emplace_back("T=" + std::to_string(t), c);
   }
   weaves.emplace_back("T as given", init);

@@ -48,6 +48,11 @@ struct ClothSelection {
   SelectionReport report;
 };
 
+// `c` with each thread's tangent curve sampled at T = t points where the
+// thread has more offsets than that and a valid curve (the ladder's
+// tangent-sample variants); *changed (may be null) tells whether any was.
+ClothParams ResampleTangentCurves(const ClothParams& c, int t, bool* changed);
+
 ClothSelection SelectClothModel(const MeasurementTable& table,
                                 const ClothParams& init,
                                 const ClothFitOptions& options,
