@@ -1,7 +1,10 @@
 // Runs the clothfit executable (SPEC §5) and checks its files, output and
 // exit status against the library.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -708,6 +711,43 @@ TEST(CliTest, PlotDrawsModelAgainstMeasuredRows) {
                  {"plot", "--preset", "velvet", "--data", table,
                   "--incidence-deg", "95", "--out", png},
                  {"--incidence-deg", "95"});
+}
+
+// Nothing lost (issue 8): a fit killed mid-way leaves an earlier output
+// untouched and no temporary file behind (outputs are written to a
+// temporary name and renamed only when complete).
+TEST(CliTest, KilledFitLeavesEarlierOutputUntouched) {
+  const fs::path dir = TestDir();
+  const std::string table = (dir / "g.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--gonio", "plain", "--texels", "4",
+                              "--directions", "8", "--out", table})
+                .status,
+            0);
+  const fs::path out = dir / "P.exr";
+  WriteText(out, "earlier result");
+  WriteText(dir / "P.exr.json", "earlier index");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(CLOTHFIT_BINARY, CLOTHFIT_BINARY, "fit", "--model", "lafortune",
+          "--data", table.c_str(), "--lobes", "3", "--mip", "--threads", "1",
+          "--out", out.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  usleep(500 * 1000);  // reading the table and fitting take seconds
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the fit ended before it was killed";
+  EXPECT_EQ(ReadText(out), "earlier result");
+  EXPECT_EQ(ReadText(dir / "P.exr.json"), "earlier index");
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos)
+        << entry.path();
+  }
 }
 
 TEST(CliTest, LafortuneFromImageStack) {
