@@ -68,7 +68,7 @@ constexpr std::array<const char*, kColumnCount> kColumnNames = {
     "t",       "normal_x", "normal_y", "normal_z"};
 
 // The number a field spells (decimal, as strtod: optional sign, exponent,
-// inf/nan); NaN when it spells none. std::from_chars does the common case
+// inf/nan); nullopt when it spells none. std::from_chars does the common case
 // without allocating; values beyond the double range take strtod's answer
 // (+-inf, or a subnormal / 0).
 std::optional<double> ParseNumber(std::string_view field) {
