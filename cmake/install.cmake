@@ -13,7 +13,7 @@ include(CMakePackageConfigHelpers)
 
 set(CLOTHFIT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/clothfit)
 
-foreach(dir models io data_synthetic holes fitting charts api)
+foreach(dir models io data_synthetic holes fitting charts api render)
   install(DIRECTORY ${CMAKE_SOURCE_DIR}/${dir}/
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/clothfit/${dir}
           FILES_MATCHING PATTERN "*.h")
@@ -28,18 +28,19 @@ add_library(clothfit_all INTERFACE)
 set_target_properties(clothfit_all PROPERTIES EXPORT_NAME clothfit)
 target_link_libraries(clothfit_all INTERFACE clothfit_models clothfit_io
   clothfit_synthetic clothfit_holes clothfit_fitting clothfit_charts
-  clothfit_bench clothfit_api)
+  clothfit_bench clothfit_api clothfit_render)
 
 set_target_properties(clothfit_models PROPERTIES EXPORT_NAME models)
 install(TARGETS clothfit_models EXPORT clothfit_models_targets)
 install(EXPORT clothfit_models_targets NAMESPACE clothfit::
         FILE clothfit-models-targets.cmake DESTINATION ${CLOTHFIT_CMAKE_DIR})
 
-foreach(lib io synthetic holes fitting charts bench api)
+foreach(lib io synthetic holes fitting charts bench api render)
   set_target_properties(clothfit_${lib} PROPERTIES EXPORT_NAME ${lib})
 endforeach()
 install(TARGETS clothfit_io clothfit_synthetic clothfit_holes
           clothfit_fitting clothfit_charts clothfit_bench clothfit_api
+          clothfit_render
           clothfit_all
         EXPORT clothfit_targets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
