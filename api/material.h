@@ -7,7 +7,8 @@
 //   glm::dvec3 rho = m.Rho(wi, wo, s, t, 2);  // mip map: texel (s, t), level 2
 //
 // Directions are unit vectors in the surface frame (SPEC §1: normal +z,
-// warp/u along +x, weft/v along +y), both pointing away from the surface.
+// warp/u along +x, weft/v along +y), both pointing away from the surface;
+// for a thread file, in the thread frame (tangent +x, SPEC §3.1).
 // Loading throws InputError (io/input_error.h) naming the file and the
 // problem. Evaluation never throws, never allocates, and only reads the
 // loaded data, so any number of threads may evaluate one Material at once.
@@ -52,6 +53,8 @@ class Material {
   }
 
  private:
+  Material() = default;  // only through Load / FromParams: never empty
+
   struct Level {
     int width = 1, height = 1;
     std::vector<ModelParams> texels;  // y * width + x

@@ -99,8 +99,7 @@ inline double CoverageSum(const ClothParams& cloth) {
 // The mixture's density at wi (unit) given wo (unit), per steradian.
 inline double ClothWiPdf(const ClothParams& cloth, const glm::dvec3& wo,
                          const glm::dvec3& wi) {
-  using namespace cloth_sampling_detail;
-  const double coverage = CoverageSum(cloth);
+  const double coverage = cloth_sampling_detail::CoverageSum(cloth);
   const double c = coverage > 0.0 ? kClothCosineWeight : 1.0;
   double pdf = wi.z > 0.0 ? c * wi.z / kPi : 0.0;
   if (!(coverage > 0.0)) return pdf;
@@ -110,7 +109,8 @@ inline double ClothWiPdf(const ClothParams& cloth, const glm::dvec3& wo,
         (1.0 - c) * th.coverage / coverage / th.offsets_deg.size();
     if (!(weight > 0.0)) continue;
     for (double offset : th.offsets_deg) {
-      pdf += weight * ConePdf(MakeCone(th, offset, wo), wi);
+      pdf += weight * cloth_sampling_detail::ConePdf(
+                          cloth_sampling_detail::MakeCone(th, offset, wo), wi);
     }
   }
   return pdf;
@@ -120,8 +120,7 @@ inline double ClothWiPdf(const ClothParams& cloth, const glm::dvec3& wo,
 // (cosine or a tangent sample's cone), (u1, u2) the direction within it.
 inline ClothSample SampleClothWi(const ClothParams& cloth, const glm::dvec3& wo,
                                  double u0, double u1, double u2) {
-  using namespace cloth_sampling_detail;
-  const double coverage = CoverageSum(cloth);
+  const double coverage = cloth_sampling_detail::CoverageSum(cloth);
   const double c = coverage > 0.0 ? kClothCosineWeight : 1.0;
   ClothSample out;
   if (u0 < c) {  // cosine-weighted hemisphere (Malley's method)
@@ -145,7 +144,8 @@ inline ClothSample SampleClothWi(const ClothParams& cloth, const glm::dvec3& wo,
       }
     }
     if (chosen != nullptr) {
-      out.wi = SampleCone(MakeCone(*chosen, chosen_offset, wo), u1, u2);
+      out.wi = cloth_sampling_detail::SampleCone(
+          cloth_sampling_detail::MakeCone(*chosen, chosen_offset, wo), u1, u2);
     }
   }
   out.pdf = ClothWiPdf(cloth, wo, out.wi);
