@@ -49,11 +49,9 @@ Material Material::Load(const std::string& path) {
     Level level;
     level.width = mipmap.levels[l].width;
     level.height = mipmap.levels[l].height;
-    for (int y = 0; y < level.height; ++y) {
-      for (int x = 0; x < level.width; ++x) {
-        level.texels.push_back(
-            TexelFromParamMipmap(mipmap, static_cast<int>(l), x, y));
-      }
+    for (LafortuneModel& texel :
+         LevelFromParamMipmap(mipmap, static_cast<int>(l))) {
+      level.texels.push_back(std::move(texel));
     }
     m.levels_.push_back(std::move(level));
   }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <new>
@@ -153,6 +154,50 @@ TEST(Material, MipmapPicksTheNearestTexelOfTheLevel) {
         << c.s << "," << c.t << " level " << c.level;
     EXPECT_NEAR(m.F(wi, wo, c.s, c.t, c.level).x, c.diffuse_r, 1e-7);
   }
+}
+
+TEST(Material, LevelReaderMatchesTheTexelReaderAndNamesMissingChannels) {
+  LafortuneMipResult r = DiffuseMip();
+  r.views = {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(1, 0, 1))};
+  for (LafortuneLevel& level : r.levels) {
+    for (size_t i = 0; i < level.texels.size(); ++i) {
+      LafortuneModel& m = level.texels[i].model;
+      m.params.lobes.assign(i % 3, LafortuneLobe());
+      if (!m.params.lobes.empty()) m.params.lobes[0].n = glm::dvec3(i + 2.0);
+      m.lut.views = r.views;
+      m.lut.color = {glm::dvec3(1.0), glm::dvec3(0.5 + 0.1 * i)};
+      m.lut.alpha = {1.0, 0.5};
+    }
+  }
+  ParamMipmap mipmap = ToParamMipmap(r);
+  for (int l = 0; l < 2; ++l) {
+    const std::vector<LafortuneModel> level = LevelFromParamMipmap(mipmap, l);
+    const ParamImage& image = mipmap.levels[l];
+    ASSERT_EQ(level.size(), size_t(image.width) * image.height);
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        const LafortuneModel a = TexelFromParamMipmap(mipmap, l, x, y);
+        const LafortuneModel& b = level[size_t(y) * image.width + x];
+        ASSERT_EQ(a.params.lobes.size(), b.params.lobes.size());
+        for (size_t k = 0; k < a.params.lobes.size(); ++k) {
+          EXPECT_EQ(a.params.lobes[k].n, b.params.lobes[k].n);
+          EXPECT_EQ(a.params.lobes[k].cx, b.params.lobes[k].cx);
+        }
+        EXPECT_EQ(a.params.diffuse, b.params.diffuse);
+        EXPECT_EQ(a.lut.color, b.lut.color);
+        EXPECT_EQ(a.lut.alpha, b.lut.alpha);
+        EXPECT_EQ(a.lut.views, b.lut.views);
+      }
+    }
+  }
+  EXPECT_EQ(LevelFromParamMipmap(mipmap, 0)[2].params.lobes.size(), 2u);
+  // A texel with two lobes in a map that lost lobe 1's N.G channel.
+  const auto it =
+      std::find(mipmap.channels.begin(), mipmap.channels.end(), "lobe1.N.G");
+  ASSERT_NE(it, mipmap.channels.end());
+  *it = "renamed";
+  ExpectHas(ErrorOf([&] { LevelFromParamMipmap(mipmap, 0); }),
+            {"no channel 'lobe1.N.G'"});
 }
 
 TEST(Material, LoadErrorsNameTheFileAndTheProblem) {
