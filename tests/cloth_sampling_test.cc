@@ -139,7 +139,7 @@ struct Moments {
 // with the sampler and with cosine sampling alone where the threads'
 // highlights dominate: both agree, and the sampler's estimates have the
 // smaller variance (over the cases together: where rho is smooth, e.g. at
-// grazing wo, cosine sampling alone can win by up to 2x).
+// grazing wo, cosine sampling alone can win by up to 3x).
 TEST(ClothSampling, EstimatesAlbedoWithLessVarianceThanCosineSampling) {
   const Case glossy[] = {{"polyester_satin_charmeuse", 10, 0},
                          {"polyester_satin_charmeuse", 30, 45},
