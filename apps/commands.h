@@ -22,6 +22,7 @@ int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
 int RunFitHoles(int argc, char** argv);      // fit --model holes
 int RunHoles(int argc, char** argv);         // holes analyze|eval|truth
 int RunPlot(int argc, char** argv);
+int RunRender(int argc, char** argv);
 int RunSynthSlab(int argc, char** argv);  // synth --model slab
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);

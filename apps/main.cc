@@ -24,6 +24,7 @@ const Command kCommands[] = {
     {"plot", clothfit::RunPlot, "polar plots: measured values against a model"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
+    {"render", clothfit::RunRender, "preview renders of parameter files"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},
 };
 

@@ -1,11 +1,13 @@
 #include "fitting/lafortune_mip.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <unordered_map>
 
 #include "io/input_error.h"
 
@@ -252,55 +254,134 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
   return m;
 }
 
-LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
-                                    int y) {
+namespace {
+
+const char* const kLobeFields[] = {"Cx", "Cy", "Cz", "N"};
+
+// "lobe{k}.{field}.{R,G,B}" for entry q = 3 field + channel.
+std::string LobeChannel(int k, int q) {
+  return "lobe" + std::to_string(k) + "." + kLobeFields[q / 3] + "." +
+         kRgb[q % 3];
+}
+
+// Reads texels of a mip map written by ToParamMipmap: the metadata parsed
+// and every channel looked up once, then each texel by index.
+class MipmapTexelReader {
+ public:
+  explicit MipmapTexelReader(const ParamMipmap& mipmap) : mipmap_(mipmap) {
+    for (size_t c = 0; c < mipmap.channels.size(); ++c) {
+      index_.emplace(mipmap.channels[c], static_cast<int>(c));
+    }
+    const nlohmann::json meta = nlohmann::json::parse(mipmap.metadata_json);
+    for (const auto& v : meta.at("views")) {
+      views_.push_back(glm::dvec3(v[0].get<double>(), v[1].get<double>(),
+                                  v[2].get<double>()));
+    }
+    for (int c = 0; c < 3; ++c) {
+      diffuse_[c] = Find(std::string("diffuse.") + kRgb[c]);
+      normal_[c] = Find(std::string("normal.") + "XYZ"[c]);
+    }
+    lobes_ = Find("lobes");
+    // Lobe channels as far as they go (a texel's count is checked below).
+    for (int k = 0;; ++k) {
+      std::array<int, 12> lobe;
+      for (int q = 0; q < 12; ++q) lobe[q] = Find(LobeChannel(k, q));
+      if (lobe[0] < 0) break;
+      lobe_channels_.push_back(lobe);
+    }
+    for (size_t v = 0; v < views_.size(); ++v) {
+      const std::string prefix = "lut." + std::to_string(v) + ".";
+      lut_.push_back({Find(prefix + "R"), Find(prefix + "G"),
+                      Find(prefix + "B"), Find(prefix + "A")});
+    }
+  }
+
+  LafortuneModel Texel(int level, size_t i) const {
+    const ParamImage& image = mipmap_.levels[level];
+    auto value = [&](int channel, const std::string& name) {
+      if (channel < 0) {
+        throw InputError("parameter mip map: no channel '" + name + "'");
+      }
+      return static_cast<double>(image.data[channel][i]);
+    };
+    LafortuneModel m;
+    for (int c = 0; c < 3; ++c) {
+      m.params.diffuse[c] =
+          value(diffuse_[c], std::string("diffuse.") + kRgb[c]);
+    }
+    const glm::dvec3 normal(value(normal_[0], "normal.X"),
+                            value(normal_[1], "normal.Y"),
+                            value(normal_[2], "normal.Z"));
+    if (glm::length(normal) > 0.0) m.normal = glm::normalize(normal);
+    const int lobes = static_cast<int>(value(lobes_, "lobes"));
+    for (int k = 0; k < lobes; ++k) {
+      if (k >= static_cast<int>(lobe_channels_.size())) {
+        value(-1, LobeChannel(k, 0));
+      }
+      const std::array<int, 12>& ch = lobe_channels_[k];
+      LafortuneLobe lobe;
+      glm::dvec3* fields[] = {&lobe.cx, &lobe.cy, &lobe.cz, &lobe.n};
+      for (int q = 0; q < 12; ++q) {
+        (*fields[q / 3])[q % 3] =
+            value(ch[q], ch[q] < 0 ? LobeChannel(k, q) : "");
+      }
+      m.params.lobes.push_back(lobe);
+    }
+    for (size_t v = 0; v < views_.size(); ++v) {
+      const std::string name = "lut." + std::to_string(v);
+      m.lut.views.push_back(views_[v]);
+      m.lut.color.push_back(glm::dvec3(value(lut_[v][0], name + ".R"),
+                                       value(lut_[v][1], name + ".G"),
+                                       value(lut_[v][2], name + ".B")));
+      m.lut.alpha.push_back(value(lut_[v][3], name + ".A"));
+    }
+    return m;
+  }
+
+ private:
+  int Find(const std::string& name) const {
+    const auto it = index_.find(name);
+    return it == index_.end() ? -1 : it->second;
+  }
+
+  const ParamMipmap& mipmap_;
+  std::unordered_map<std::string, int> index_;
+  std::vector<glm::dvec3> views_;
+  int diffuse_[3], normal_[3], lobes_;
+  std::vector<std::array<int, 12>> lobe_channels_;
+  std::vector<std::array<int, 4>> lut_;
+};
+
+void CheckLevel(const ParamMipmap& mipmap, int level) {
   if (level < 0 || level >= static_cast<int>(mipmap.levels.size())) {
     throw InputError("mip level " + std::to_string(level) + " out of range");
   }
+}
+
+}  // namespace
+
+LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
+                                    int y) {
+  CheckLevel(mipmap, level);
   const ParamImage& image = mipmap.levels[level];
   if (x < 0 || y < 0 || x >= image.width || y >= image.height) {
     throw InputError("texel out of range");
   }
-  const size_t i = static_cast<size_t>(y) * image.width + x;
-  auto channel = [&](const std::string& name) {
-    const auto it =
-        std::find(mipmap.channels.begin(), mipmap.channels.end(), name);
-    if (it == mipmap.channels.end()) {
-      throw InputError("parameter mip map: no channel '" + name + "'");
-    }
-    return static_cast<double>(image.data[it - mipmap.channels.begin()][i]);
-  };
-  const nlohmann::json meta = nlohmann::json::parse(mipmap.metadata_json);
-  LafortuneModel m;
-  for (int c = 0; c < 3; ++c) {
-    m.params.diffuse[c] = channel(std::string("diffuse.") + kRgb[c]);
+  return MipmapTexelReader(mipmap).Texel(
+      level, static_cast<size_t>(y) * image.width + x);
+}
+
+std::vector<LafortuneModel> LevelFromParamMipmap(const ParamMipmap& mipmap,
+                                                 int level) {
+  CheckLevel(mipmap, level);
+  const MipmapTexelReader reader(mipmap);
+  const ParamImage& image = mipmap.levels[level];
+  std::vector<LafortuneModel> texels;
+  texels.reserve(static_cast<size_t>(image.width) * image.height);
+  for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i) {
+    texels.push_back(reader.Texel(level, i));
   }
-  const glm::dvec3 normal(channel("normal.X"), channel("normal.Y"),
-                          channel("normal.Z"));
-  if (glm::length(normal) > 0.0) m.normal = glm::normalize(normal);
-  const int lobes = static_cast<int>(channel("lobes"));
-  for (int k = 0; k < lobes; ++k) {
-    LafortuneLobe lobe;
-    const std::string prefix = "lobe" + std::to_string(k) + ".";
-    for (int c = 0; c < 3; ++c) {
-      lobe.cx[c] = channel(prefix + "Cx." + kRgb[c]);
-      lobe.cy[c] = channel(prefix + "Cy." + kRgb[c]);
-      lobe.cz[c] = channel(prefix + "Cz." + kRgb[c]);
-      lobe.n[c] = channel(prefix + "N." + kRgb[c]);
-    }
-    m.params.lobes.push_back(lobe);
-  }
-  const auto& views = meta.at("views");
-  for (size_t v = 0; v < views.size(); ++v) {
-    m.lut.views.push_back(glm::dvec3(views[v][0].get<double>(),
-                                     views[v][1].get<double>(),
-                                     views[v][2].get<double>()));
-    const std::string prefix = "lut." + std::to_string(v) + ".";
-    m.lut.color.push_back(glm::dvec3(
-        channel(prefix + "R"), channel(prefix + "G"), channel(prefix + "B")));
-    m.lut.alpha.push_back(channel(prefix + "A"));
-  }
-  return m;
+  return texels;
 }
 
 }  // namespace clothfit

@@ -76,5 +76,9 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result);
 // ToParamMipmap (its metadata holds the views).
 LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
                                     int y);
+// Every texel of `level` (y * width + x), reading the index once: what a
+// renderer loads (api/material.h).
+std::vector<LafortuneModel> LevelFromParamMipmap(const ParamMipmap& mipmap,
+                                                 int level);
 
 }  // namespace clothfit

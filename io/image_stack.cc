@@ -260,6 +260,8 @@ bool UsesFloat(const std::string& extension) {
          ext == ".hdr";
 }
 
+}  // namespace
+
 void WriteImage(const std::string& path, int width, int height,
                 int colour_channels, bool with_alpha, bool float_pixels,
                 const std::vector<float>& pixels) {
@@ -316,6 +318,8 @@ void WriteImage(const std::string& path, int width, int height,
     Fail(path, 0, 0, problem);
   }
 }
+
+namespace {
 
 using DirectionKey = std::array<double, 6>;
 

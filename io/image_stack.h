@@ -40,4 +40,13 @@ void WriteImageStack(const MeasurementTable& table,
                      const std::string& manifest_path,
                      const std::string& extension, bool with_alpha);
 
+// Writes one image atomically, its format from the path's extension:
+// `colour_channels` (1 or 3) plus alpha when `with_alpha`, pixels
+// interleaved row by row (row 0 at the top); float_pixels: stored as FLOAT
+// (EXR, TIFF), else as 8 bit (PNG; values in [0, 1]). Throws InputError
+// naming the path.
+void WriteImage(const std::string& path, int width, int height,
+                int colour_channels, bool with_alpha, bool float_pixels,
+                const std::vector<float>& pixels);
+
 }  // namespace clothfit

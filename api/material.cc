@@ -1,0 +1,70 @@
+#include "api/material.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fitting/lafortune_mip.h"
+#include "io/input_error.h"
+#include "io/param_mipmap.h"
+#include "io/params_json.h"
+
+namespace clothfit {
+
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// Nearest texel index along an axis of n texels for a coordinate in [0, 1].
+int TexelIndex(double u, int n) noexcept {
+  if (!(u > 0.0)) return 0;  // also NaN
+  const int i = static_cast<int>(u * n);
+  return i >= n ? n - 1 : i;
+}
+
+}  // namespace
+
+Material Material::FromParams(const ModelParams& params) {
+  // Round trip through the file format: the one place that validates every
+  // model's ranges (io/params_json.cc) with the field name in the message.
+  const ParamFile file =
+      ParseParamFile(FormatParamFile(ParamFile{params, ""}), "<parameters>");
+  Material m;
+  m.kind_ = ModelName(file.params);
+  m.levels_.resize(1);
+  m.levels_[0].texels.push_back(file.params);
+  return m;
+}
+
+Material Material::Load(const std::string& path) {
+  if (!EndsWith(path, ".exr")) {
+    return FromParams(ReadParamFile(path).params);
+  }
+  const ParamMipmap mipmap = ReadParamMipmap(path);
+  Material m;
+  m.kind_ = "lafortune_mipmap";
+  for (size_t l = 0; l < mipmap.levels.size(); ++l) {
+    Level level;
+    level.width = mipmap.levels[l].width;
+    level.height = mipmap.levels[l].height;
+    for (LafortuneModel& texel :
+         LevelFromParamMipmap(mipmap, static_cast<int>(l))) {
+      level.texels.push_back(std::move(texel));
+    }
+    m.levels_.push_back(std::move(level));
+  }
+  if (m.levels_.empty()) throw InputError(path + ": no mip levels");
+  return m;
+}
+
+glm::dvec3 Material::Value(const glm::dvec3& wi, const glm::dvec3& wo, double s,
+                           double t, int level, Quantity q) const noexcept {
+  const Level& l = levels_[ClampLevel(level)];
+  const size_t i = static_cast<size_t>(TexelIndex(t, l.height)) * l.width +
+                   TexelIndex(s, l.width);
+  return Evaluate(l.texels[i], wi, wo, q);
+}
+
+}  // namespace clothfit

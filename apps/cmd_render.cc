@@ -1,0 +1,164 @@
+// clothfit render: preview renders of a parameter file (issue 9;
+// render/preview.h): the cloth on cylinders in three orientations (the
+// paper's Fig. 12), a slab front- and back-lit over a checker, a hole
+// texture on tilted panels; with --compare, a second file's render below
+// the first at the same exposure. Linear EXR plus tone-mapped PNG.
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.h"
+#include "holes/hole_texture.h"
+#include "io/atomic_file.h"
+#include "io/mask_io.h"
+#include "models/presets.h"
+#include "render/preview.h"
+
+namespace clothfit {
+namespace {
+
+// Whether a parameter file is a holes file (not a ModelParams). A file
+// that is not JSON is left to ReadParamFile's message.
+bool IsHolesFile(const std::string& path) {
+  const nlohmann::json j =
+      nlohmann::json::parse(ReadFileToString(path), nullptr, false);
+  return j.is_object() && j.contains("model") && j["model"] == "holes";
+}
+
+PreviewImage RenderHolesFile(const CommandArgs& args, const std::string& path,
+                             const PreviewOptions& options) {
+  const HolesParamFile file = ReadHolesParamFile(path);
+  std::string mask_path = args.Has("mask") ? args.Get("mask") : "";
+  if (mask_path.empty() && !file.mask.empty()) {
+    mask_path =
+        (std::filesystem::path(path).parent_path() / file.mask).string();
+  }
+  if (mask_path.empty()) {
+    args.Fail(path + ": a holes file needs its mask: give --mask M.png");
+  }
+  MaskReadOptions mask_options;
+  mask_options.threshold = file.threshold;
+  const Mask mask = ReadMask(mask_path, mask_options);
+  const std::optional<HoleMethod> method =
+      ParseHoleMethod(file.method.empty() ? "extension" : file.method);
+  if (!method) args.Fail(path + ": method: unknown '" + file.method + "'");
+  const HoleTexture texture =
+      AnalyzeMask(mask, *method == HoleMethod::kExtension);
+  const LevelTexels texels = GatherLevel(texture, texture.counts.levels() - 1);
+  const HolesParams& p = file.params;
+  return RenderHoles(
+      p,
+      [&](const glm::dvec3& wo) {
+        return TileRatios(texels, *method, ViewOffset(p.thickness_texels, wo));
+      },
+      options);
+}
+
+// The render of --FILE_OPTION P.json or --PRESET_OPTION NAME.
+PreviewImage RenderOption(const CommandArgs& args,
+                          const std::string& file_option,
+                          const std::string& preset_option,
+                          const PreviewOptions& options) {
+  if (args.Has(preset_option)) {
+    ClothParams cloth;
+    if (!GetPreset(args.Get(preset_option), &cloth)) {
+      args.Fail("unknown preset '" + args.Get(preset_option) +
+                "'; 'clothfit presets' lists them");
+    }
+    return RenderCylinders(cloth, options);
+  }
+  const std::string path = args.Get(file_option);
+  if (IsHolesFile(path)) return RenderHolesFile(args, path, options);
+  const ParamFile file = ReadParamFile(path);
+  if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
+    return RenderSlab(*slab, options);
+  }
+  return RenderCylinders(file.params, options);
+}
+
+}  // namespace
+
+int RunRender(int argc, char** argv) {
+  CommandArgs args(
+      "render",
+      "clothfit render (--params P.json | --preset NAME) [--compare Q.json | "
+      "--compare-preset NAME] --out R.exr [--png R.png] [options]",
+      "Preview renders under a point light, orthographic camera: cloth, "
+      "thread and Lafortune parameters\nwrap cylinders with the warp "
+      "vertical, horizontal and diagonal (Sadeghi et al. 2013, Fig. 12); a\n"
+      "slab is a tilted panel over a checker, front-lit and back-lit; a holes "
+      "file a panel at three\ntilts over a checker. --compare renders a "
+      "second file below the first at the same exposure.\nWrites linear "
+      "OpenEXR and a tone-mapped PNG (render/preview.h describes the scene).");
+  args.Option("params", "P.json", "parameter file (SPEC §4, or holes)");
+  args.Option("preset", "NAME", "a preset instead of --params");
+  args.Option("compare", "Q.json", "a second parameter file, rendered below");
+  args.Option("compare-preset", "NAME", "a preset instead of --compare");
+  args.Option("mask", "M.png",
+              "the mask of a holes file (default: the file's \"mask\")");
+  args.Option("out", "R.exr", "linear render (OpenEXR)");
+  args.Option("png", "R.png", "tone-mapped render (default: --out as .png)");
+  args.Option("size", "N", "pixels per panel side, 8..1024", "96");
+  args.Option("light-deg", "THETA,PHI",
+              "direction of the light from the camera axis", "45,45");
+  args.Option("light-distance", "D", "distance of the light (radius 1)", "6");
+  args.Option("tilt-deg", "DEG", "tilt of slab and holes panels, [0, 40]",
+              "35");
+  args.Option("exposure", "E",
+              "multiplier before tone mapping (default: the 99th percentile "
+              "maps to 1)");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  if (args.Has("params") == args.Has("preset")) {
+    args.Fail("give exactly one of --params FILE and --preset NAME");
+  }
+  if (args.Has("compare") && args.Has("compare-preset")) {
+    args.Fail("give at most one of --compare FILE and --compare-preset NAME");
+  }
+  const std::string out = args.Required("out");
+  if (out.size() < 5 || out.substr(out.size() - 4) != ".exr") {
+    args.Fail("option '--out': must name an .exr file, got '" + out + "'");
+  }
+  const std::string png = args.Has("png")
+                              ? args.Get("png")
+                              : out.substr(0, out.size() - 4) + ".png";
+  PreviewOptions options;
+  const long size = args.GetInt("size");
+  if (size < 8 || size > 1024)
+    args.Fail("option '--size': must be in [8, 1024]");
+  options.size = static_cast<int>(size);
+  const std::vector<double> light = NumberListOption(args, "light-deg");
+  if (light.size() != 2 || !(light[0] >= 0.0 && light[0] < 90.0)) {
+    args.Fail("option '--light-deg': expected THETA,PHI with THETA in [0, 90)");
+  }
+  const double theta = Radians(light[0]), phi = Radians(light[1]);
+  options.light = glm::dvec3(std::sin(theta) * std::cos(phi),
+                             std::sin(theta) * std::sin(phi), std::cos(theta));
+  options.light_distance = args.GetDouble("light-distance");
+  if (!(options.light_distance >= 2.0 && options.light_distance <= 1e6)) {
+    args.Fail("option '--light-distance': must be in [2, 1e6]");
+  }
+  options.tilt_deg = args.GetDouble("tilt-deg");
+  if (!(options.tilt_deg >= 0.0 && options.tilt_deg <= 40.0)) {
+    args.Fail("option '--tilt-deg': must be in [0, 40]");
+  }
+  CheckWritable(out);
+  CheckWritable(png);
+  PreviewImage image = RenderOption(args, "params", "preset", options);
+  if (args.Has("compare") || args.Has("compare-preset")) {
+    image = StackRows(image,
+                      RenderOption(args, "compare", "compare-preset", options));
+  }
+  double exposure = AutoExposure(image);
+  if (args.Has("exposure")) {
+    exposure = args.GetDouble("exposure");
+    if (!(exposure > 0.0 && std::isfinite(exposure))) {
+      args.Fail("option '--exposure': must be > 0");
+    }
+  }
+  WritePreview(image, exposure, out, png);
+  std::printf("wrote %s and %s (%d x %d, exposure %.4g)\n", out.c_str(),
+              png.c_str(), image.width, image.height, exposure);
+  return 0;
+}
+
+}  // namespace clothfit

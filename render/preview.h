@@ -1,0 +1,85 @@
+// Preview renders of fitted cloth (issue 9; `clothfit render`): small
+// images, computed in linear radiance, that show a parameter set the way
+// the paper's Fig. 12 does.
+//
+// Scene (all panels): an orthographic camera looking down -z (every view
+// direction is +z in the world), a point light of intensity d^2 at
+// distance d in direction `light` (so the irradiance is about 1 at the
+// origin), and no other light. A panel spans [-1.2, 1.2]^2 of the world's
+// x, y; its pixel (i, j) has row j = 0 at the top.
+//  - Cylinders (thread, cloth, lafortune): radius 1, axis +y, wrapped in the
+//    cloth with its warp (+x of the surface frame) along the axis
+//    (threads vertical), around it (horizontal) and at 45 degrees
+//    (diagonal): three panels. Radiance = rho(wi, wo) I / r^2.
+//  - Slab: a square panel (half-size 0.8) tilted by `tilt_deg` about +y over
+//    a checker backdrop (unlit, values kCheckerDark/kCheckerLight); the
+//    light in front of the panel (front-lit: reflection) and mirrored
+//    behind it (back-lit: transmission), two panels; the backdrop is seen
+//    through the slab attenuated by its direct transmittance D(|wo.z|).
+//  - Holes: the same panel at three tilts (0, tilt, 2 tilt; front-lit),
+//    whose transmittance T(wo) (per channel) lets the backdrop through and
+//    whose opaque fraction is a grey diffuse surface (albedo
+//    kHolesOpaqueAlbedo).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "models/evaluate.h"
+#include "models/holes.h"
+
+namespace clothfit {
+
+inline constexpr double kCheckerDark = 0.1, kCheckerLight = 0.5;
+inline constexpr double kHolesOpaqueAlbedo = 0.6;
+inline constexpr double kPanelExtent = 1.2;  // world half-width of a panel
+
+struct PreviewOptions {
+  int size = 96;                                   // pixels per panel side
+  glm::dvec3 light{0.5, 0.5, 0.7071067811865476};  // unit, towards the light
+  double light_distance = 6.0;                     // world units
+  double tilt_deg = 35.0;                          // slab and holes panels
+};
+
+// Linear radiance, row-major, row 0 at the top.
+struct PreviewImage {
+  int width = 0, height = 0;
+  std::vector<glm::dvec3> pixels;
+  std::vector<std::string> panel_titles;  // left to right
+  glm::dvec3& At(int x, int y) { return pixels[size_t(y) * width + x]; }
+  const glm::dvec3& At(int x, int y) const {
+    return pixels[size_t(y) * width + x];
+  }
+};
+
+// The world position of the centre of pixel (i, j) of a panel (z = 0).
+glm::dvec2 PanelPoint(int i, int j, int size);
+
+// Thread, cloth or lafortune: the three cylinders. Requires a model that
+// reflects (not a slab).
+PreviewImage RenderCylinders(const ModelParams& params,
+                             const PreviewOptions& options);
+// Front-lit and back-lit panels.
+PreviewImage RenderSlab(const SlabParams& params,
+                        const PreviewOptions& options);
+// `ratios(wo)`: the hole texture's ratios for the view wo (panel frame).
+PreviewImage RenderHoles(
+    const HolesParams& params,
+    const std::function<HoleRatios(const glm::dvec3&)>& ratios,
+    const PreviewOptions& options);
+
+// `top` above `bottom` (same width). Throws InputError otherwise.
+PreviewImage StackRows(const PreviewImage& top, const PreviewImage& bottom);
+
+// The exposure that maps the 99th percentile of the pixels' largest channel
+// to 1 (1 for a black image).
+double AutoExposure(const PreviewImage& image);
+
+// Writes the linear image as OpenEXR (float RGB) and, tone-mapped
+// (exposure, clamp to [0, 1], sRGB transfer curve), as 8-bit PNG; both
+// atomically. Throws InputError naming the path.
+void WritePreview(const PreviewImage& image, double exposure,
+                  const std::string& exr_path, const std::string& png_path);
+
+}  // namespace clothfit

@@ -1,0 +1,250 @@
+// Preview renders (render/preview.h) against radiance computed by hand for
+// models whose value has a closed form, and `clothfit render` (files,
+// sizes, bad input).
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/mask_io.h"
+#include "render/preview.h"
+#include "tests/cli_test_util.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+using testing_util::Describe;
+using testing_util::ExpectBadInput;
+using testing_util::RunClothfit;
+using testing_util::RunResult;
+using testing_util::WriteText;
+
+fs::path TestDir() { return testing_util::FreshTestDir("render_test_"); }
+
+PreviewOptions Small() {
+  PreviewOptions o;
+  o.size = 24;
+  return o;
+}
+
+// The cylinder's point under panel pixel (i, j) and the light's direction
+// and I / r^2 there (render/preview.h's scene), or false off the cylinder.
+bool CylinderPoint(const PreviewOptions& o, int i, int j, glm::dvec3* point,
+                   glm::dvec3* wi, double* irradiance) {
+  const double x = ((i + 0.5) / o.size * 2.0 - 1.0) * 1.2;
+  const double y = (1.0 - (j + 0.5) / o.size * 2.0) * 1.2;
+  if (!(std::abs(x) < 1.0)) return false;
+  *point = glm::dvec3(x, y, std::sqrt(1.0 - x * x));
+  const glm::dvec3 to_light = o.light * o.light_distance - *point;
+  *wi = glm::normalize(to_light);
+  *irradiance =
+      o.light_distance * o.light_distance / glm::dot(to_light, to_light);
+  return true;
+}
+
+TEST(Render, DiffuseCylindersAreLambertianInEveryOrientation) {
+  const PreviewOptions o = Small();
+  LafortuneModel diffuse;
+  diffuse.params.diffuse = glm::dvec3(0.2, 0.4, 0.6);
+  const PreviewImage image = RenderCylinders(diffuse, o);
+  ASSERT_EQ(image.width, 3 * o.size);
+  ASSERT_EQ(image.height, o.size);
+  for (int panel = 0; panel < 3; ++panel) {
+    for (int j = 0; j < o.size; ++j) {
+      for (int i = 0; i < o.size; ++i) {
+        glm::dvec3 p, wi;
+        double e = 0.0;
+        glm::dvec3 expected(0.0);
+        if (CylinderPoint(o, i, j, &p, &wi, &e)) {
+          // rho = diffuse cos(theta_i); the normal of the unit cylinder
+          // about +y is (x, 0, z).
+          const double cos_i = glm::dot(glm::dvec3(p.x, 0.0, p.z), wi);
+          if (cos_i > 0.0) expected = diffuse.params.diffuse * cos_i * e;
+        }
+        const glm::dvec3 got = image.At(panel * o.size + i, j);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(got[c], expected[c], 1e-12)
+              << panel << " " << i << "," << j;
+        }
+      }
+    }
+  }
+}
+
+// A Lafortune lobe [Cx l.x v.x]^1 alone reveals where the warp (+x of the
+// surface frame) runs: along the axis (0, 1, 0), around it (z, 0, -x), or
+// between them at 45 degrees.
+TEST(Render, CylinderPanelsTurnTheWarpVerticalHorizontalDiagonal) {
+  const PreviewOptions o = Small();
+  LafortuneModel lobe;
+  lobe.params.diffuse = glm::dvec3(0.0);
+  LafortuneLobe x_only;
+  x_only.cx = glm::dvec3(1.0);
+  x_only.cy = x_only.cz = glm::dvec3(0.0);
+  x_only.n = glm::dvec3(1.0);
+  lobe.params.lobes = {x_only};
+  const PreviewImage image = RenderCylinders(lobe, o);
+  double lit = 0.0;
+  for (int panel = 0; panel < 3; ++panel) {
+    const double a = panel * 0.25 * kPi;
+    for (int j = 0; j < o.size; ++j) {
+      for (int i = 0; i < o.size; ++i) {
+        glm::dvec3 p, wi;
+        double e = 0.0;
+        double expected = 0.0;
+        if (CylinderPoint(o, i, j, &p, &wi, &e)) {
+          const glm::dvec3 n(p.x, 0.0, p.z);
+          const glm::dvec3 warp = std::cos(a) * glm::dvec3(0.0, 1.0, 0.0) +
+                                  std::sin(a) * glm::dvec3(p.z, 0.0, -p.x);
+          // wo = +z: v.x = warp.z; l.x = wi . warp; l.z = wi . n.
+          const double lx_vx = glm::dot(wi, warp) * warp.z;
+          const double lz = glm::dot(wi, n);
+          if (lz > 0.0 && lx_vx > 0.0) expected = lz * lx_vx * e;
+        }
+        EXPECT_NEAR(image.At(panel * o.size + i, j).x, expected, 1e-12)
+            << "panel " << panel << " pixel " << i << "," << j;
+        lit += expected;
+      }
+    }
+  }
+  EXPECT_GT(lit, 1.0);  // the comparison is not between zeros
+}
+
+TEST(Render, SlabPanelsShowTheBackdropThroughThinAndHideItBehindThick) {
+  const PreviewOptions o = Small();
+  SlabParams thin;
+  thin.tau = glm::dvec3(1e-9);
+  thin.albedo = glm::dvec3(0.5);
+  for (const glm::dvec3& v : RenderSlab(thin, o).pixels) {
+    const bool checker = std::abs(v.x - kCheckerDark) < 1e-6 ||
+                         std::abs(v.x - kCheckerLight) < 1e-6;
+    EXPECT_TRUE(checker) << v.x;
+  }
+  // Thick and black: the back-lit panel is black where it covers the
+  // backdrop, a 1.6 cos(tilt) x 1.6 rectangle of the 2.4 x 2.4 panel.
+  SlabParams thick;
+  thick.tau = glm::dvec3(50.0);
+  thick.albedo = glm::dvec3(0.0);
+  const PreviewImage image = RenderSlab(thick, o);
+  int black = 0;
+  for (int j = 0; j < o.size; ++j) {
+    for (int i = o.size; i < 2 * o.size; ++i) {
+      if (image.At(i, j).x < 1e-9) ++black;
+    }
+  }
+  const double expected =
+      1.6 * std::cos(Radians(o.tilt_deg)) * 1.6 / (2.4 * 2.4) * o.size * o.size;
+  EXPECT_NEAR(black, expected, 2.0 * o.size);
+}
+
+TEST(Render, HolesPanelsLetTheBackdropThroughByTheirTransmittance) {
+  PreviewOptions o = Small();
+  o.tilt_deg = 30.0;
+  HolesParams params;
+  // Transmittance cos(theta_o), no opaque part: backdrop * cos(tilt).
+  const PreviewImage image = RenderHoles(
+      params,
+      [](const glm::dvec3& wo) {
+        HoleRatios r;
+        r.transparent = wo.z;
+        return r;
+      },
+      o);
+  ASSERT_EQ(image.width, 3 * o.size);
+  const int centre = o.size / 2;
+  for (int panel = 0; panel < 3; ++panel) {
+    const glm::dvec3 v = image.At(panel * o.size + centre, centre);
+    const glm::dvec2 p = PanelPoint(centre, centre, o.size);
+    const double backdrop =
+        (int(std::floor(p.x / 0.3)) + int(std::floor(p.y / 0.3))) % 2 == 0
+            ? kCheckerLight
+            : kCheckerDark;
+    EXPECT_NEAR(v.x, backdrop * std::cos(Radians(30.0 * panel)), 1e-12);
+  }
+}
+
+// Width, height and channel 0 of an image file.
+std::vector<float> ReadImage(const std::string& path, int* w, int* h) {
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path;
+  if (!in) return {};
+  *w = in->spec().width;
+  *h = in->spec().height;
+  std::vector<float> pixels(size_t(*w) * *h * in->spec().nchannels);
+  in->read_image(0, 0, 0, in->spec().nchannels, OIIO::TypeDesc::FLOAT,
+                 pixels.data());
+  return pixels;
+}
+
+TEST(RenderCli, PresetAgainstPresetWritesExrAndPngOneRowEach) {
+  const fs::path dir = TestDir();
+  const RunResult r =
+      RunClothfit(dir, {"render", "--preset", "polyester_satin_charmeuse",
+                        "--compare-preset", "polyester_satin_charmeuse_back",
+                        "--size", "16", "--out", (dir / "satin.exr").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  int w = 0, h = 0;
+  const std::vector<float> exr =
+      ReadImage((dir / "satin.exr").string(), &w, &h);
+  EXPECT_EQ(w, 48);
+  EXPECT_EQ(h, 32);
+  int pw = 0, ph = 0;
+  ReadImage((dir / "satin.png").string(), &pw, &ph);
+  EXPECT_EQ(pw, 48);
+  EXPECT_EQ(ph, 32);
+  // The rows differ: front and back of the satin.
+  double top = 0.0, bottom = 0.0;
+  for (size_t i = 0; i < exr.size() / 2; ++i) top += exr[i];
+  for (size_t i = exr.size() / 2; i < exr.size(); ++i) bottom += exr[i];
+  EXPECT_GT(top, 0.0);
+  EXPECT_GT(std::abs(top - bottom), 0.01 * top);
+}
+
+TEST(RenderCli, HolesFileNeedsAMaskAndRendersThreeTilts) {
+  const fs::path dir = TestDir();
+  WriteText(dir / "holes.json",
+            R"({"model": "holes", "thickness_texels": 1.0})");
+  Mask mask = MaskFromRows({"#..", "...", "..."});
+  WriteMask(mask, (dir / "net.png").string());
+  const RunResult r =
+      RunClothfit(dir, {"render", "--params", (dir / "holes.json").string(),
+                        "--mask", (dir / "net.png").string(), "--size", "16",
+                        "--out", (dir / "h.exr").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  int w = 0, h = 0;
+  ReadImage((dir / "h.exr").string(), &w, &h);
+  EXPECT_EQ(w, 48);
+  ExpectBadInput(dir,
+                 {"render", "--params", (dir / "holes.json").string(), "--out",
+                  (dir / "x.exr").string()},
+                 {"holes.json", "--mask"});
+}
+
+TEST(RenderCli, BadInputExitsTwoAndWritesNothing) {
+  const fs::path dir = TestDir();
+  const std::string out = (dir / "r.exr").string();
+  WriteText(dir / "slab.json",
+            R"({"model": "slab", "tau": 0.5, "albedo": [0.9, 0.8, 0.7]})");
+  ExpectBadInput(
+      dir, {"render", "--params", (dir / "none.json").string(), "--out", out},
+      {"none.json"});
+  ExpectBadInput(
+      dir, {"render", "--preset", "linen_plain", "--size", "4", "--out", out},
+      {"--size"});
+  ExpectBadInput(
+      dir,
+      {"render", "--preset", "linen_plain", "--out", (dir / "r.png").string()},
+      {"--out", ".exr"});
+  ExpectBadInput(dir,
+                 {"render", "--params", (dir / "slab.json").string(),
+                  "--compare-preset", "linen_plain", "--out", out},
+                 {"side by side"});
+  ExpectBadInput(dir, {"render", "--preset", "nope", "--out", out}, {"nope"});
+}
+
+}  // namespace
+}  // namespace clothfit
