@@ -119,20 +119,38 @@ void Say(const BenchOptions& o, const std::string& text) {
   if (o.progress) o.progress(text);
 }
 
+// A synthetic problem: the truth's table with 2 % noise, and held-out
+// directions drawn from a second stream (wo over the whole sphere for the
+// thread and slab models).
+struct Problem {
+  MeasurementTable table;
+  std::vector<TableRow> held_out;
+};
+
+Problem MakeProblem(const ModelParams& truth, int rows, bool full_sphere,
+                    uint64_t seed, uint64_t held_out_seed) {
+  DirectionSampling sampling;
+  sampling.rows = rows;
+  sampling.full_sphere_out = full_sphere;
+  SynthOptions synth;
+  synth.noise = 0.02;
+  Problem p;
+  p.table = SyntheticTable(truth, sampling, synth, seed);
+  Random random(held_out_seed);
+  p.held_out = SampleDirections(sampling, &random);
+  return p;
+}
+
 // Thread: the satin's warp thread, 2 % noise; knobs: solver starts and the
 // iteration cap.
 void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams satin;
   GetPreset("polyester_satin_charmeuse", &satin);
   const ThreadParams truth = satin.threads[0].params;
-  DirectionSampling sampling;
-  sampling.rows = o.quick ? 400 : 4000;
-  sampling.full_sphere_out = true;
-  SynthOptions synth;
-  synth.noise = 0.02;
-  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
-  Random random(o.seed + 1000);
-  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  const Problem problem =
+      MakeProblem(truth, o.quick ? 400 : 4000, true, o.seed, o.seed + 1000);
+  const MeasurementTable& table = problem.table;
+  const std::vector<TableRow>& held_out = problem.held_out;
   const std::vector<int> starts =
       o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
   const std::vector<int> caps =
@@ -170,13 +188,10 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
 void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams truth;
   GetPreset("polyester_satin_charmeuse", &truth);
-  DirectionSampling sampling;
-  sampling.rows = o.quick ? 300 : 3000;
-  SynthOptions synth;
-  synth.noise = 0.02;
-  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
-  Random random(o.seed + 2000);
-  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  const Problem problem =
+      MakeProblem(truth, o.quick ? 300 : 3000, false, o.seed, o.seed + 2000);
+  const MeasurementTable& table = problem.table;
+  const std::vector<TableRow>& held_out = problem.held_out;
   const ClothParams start = GenericClothStart(truth);
   struct Knobs {
     bool multi_start;
@@ -389,17 +404,11 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
 // regime, docs/slab.md), reflection and transmission rows, 2 % noise;
 // knobs: solver starts and one tau per channel.
 void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
-  SlabParams truth;
-  truth.tau = glm::dvec3(0.05);
-  truth.albedo = glm::dvec3(0.4, 0.3, 0.2);
-  DirectionSampling sampling;
-  sampling.rows = o.quick ? 300 : 3000;
-  sampling.full_sphere_out = true;
-  SynthOptions synth;
-  synth.noise = 0.02;
-  const MeasurementTable table = SyntheticTable(truth, sampling, synth, o.seed);
-  Random random(o.seed + 3000);
-  const std::vector<TableRow> held_out = SampleDirections(sampling, &random);
+  const SlabParams truth = BenchSlabTruth();
+  const Problem problem =
+      MakeProblem(truth, o.quick ? 300 : 3000, true, o.seed, o.seed + 3000);
+  const MeasurementTable& table = problem.table;
+  const std::vector<TableRow>& held_out = problem.held_out;
   std::vector<double> truth_values(SlabParams::kSize);
   ToArray(truth, truth_values.data());
   for (int starts :
@@ -526,6 +535,13 @@ std::string Short(double v) {
 }
 
 }  // namespace
+
+SlabParams BenchSlabTruth() {
+  SlabParams p;
+  p.tau = glm::dvec3(0.05);
+  p.albedo = glm::dvec3(0.4, 0.3, 0.2);
+  return p;
+}
 
 double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
                     const std::vector<TableRow>& rows, Quantity q) {

@@ -56,6 +56,10 @@ struct BenchRow {
 std::vector<BenchRow> RunBench(const BenchOptions& options,
                                std::string* peer_note = nullptr);
 
+// The slab of the bench and the stability study: tau 0.05, albedo (0.4,
+// 0.3, 0.2), inside the single-scattering regime (docs/slab.md).
+SlabParams BenchSlabTruth();
+
 // Relative RMS of `fitted` against `truth` at the rows' directions (the
 // quantity q): the held-out error of the thread and cloth fits.
 double HeldOutError(const ModelParams& fitted, const ModelParams& truth,

@@ -117,9 +117,7 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
       {"outliers", {0.0, 0.01, 0.05, 0.1, 0.2}, percent},
   };
   // The slab: tau 0.05, albedo (0.4, 0.3, 0.2), inside its regime.
-  SlabParams slab;
-  slab.tau = glm::dvec3(0.05);
-  slab.albedo = glm::dvec3(0.4, 0.3, 0.2);
+  const SlabParams slab = BenchSlabTruth();
   enum class Kind { kThread, kCloth, kSlab };
   struct Fitter {
     std::string name;
