@@ -24,7 +24,6 @@ std::string FitReportJson(const FitReport& r) {
   j["rms"] = r.rms;
   j["relative_rms"] = r.relative_rms;
   j["iterations"] = r.iterations;
-  j["seconds"] = r.seconds;
   j["residuals"] = r.residuals;
   j["starts"] = r.starts;
   nlohmann::ordered_json values = nlohmann::ordered_json::object();

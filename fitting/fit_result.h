@@ -42,7 +42,9 @@ struct FitReport {
   double rms = 0.0;           // RMS of (model - measured), data units
   double relative_rms = 0.0;  // RMS(model - measured) / RMS(measured)
   int iterations = 0;
-  double seconds = 0.0;  // wall time of the whole fit
+  // Wall time of the whole fit: printed in the summary, never written to
+  // the parameter file (same inputs give bit-identical files, issue 8).
+  double seconds = 0.0;
   int residuals = 0;
   int starts = 1;  // multi-start: how many solves were run
   std::vector<ParameterReport> parameters;
@@ -56,7 +58,7 @@ struct FitReport {
 glm::dvec3 OneChannelRgb(const std::string& name, const glm::dvec3& rgb,
                          FitReport* report);
 
-// The "fit" object of a result file, as JSON text.
+// The "fit" object of a result file, as JSON text (no wall time).
 std::string FitReportJson(const FitReport& report);
 // A one-screen summary; `truth` (same order as parameters, may be empty)
 // adds a column of true values.
