@@ -1,4 +1,6 @@
 // clothfit: fits cloth appearance models to measurement tables (SPEC §5).
+#include <glog/logging.h>
+
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -42,6 +44,10 @@ void PrintUsage(std::ostream& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Ceres logs a failed solve through glog, to stderr (logging is not
+  // initialised); the fit reports every such failure in its own message,
+  // so that bad input gets one clear message (issue 8).
+  FLAGS_minloglevel = google::GLOG_FATAL;
   if (argc < 2) {
     PrintUsage(std::cerr);
     return 2;

@@ -420,13 +420,15 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured) {
+                    std::vector<double>* measured,
+                    std::vector<const TableRow*>* rows) {
     const Values v =
         Predict(table, FromVector(init, x, weave->shared_albedo), row_samples);
     for (size_t i = 0; i < table.rows.size(); ++i) {
       for (int ch = 0; ch < table.channels; ++ch) {
         model->push_back(x.back() * v[i][ch]);
         measured->push_back(table.rows[i].value[ch]);
+        if (rows) rows->push_back(&table.rows[i]);
       }
     }
   };

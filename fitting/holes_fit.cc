@@ -176,7 +176,8 @@ HolesFitResult FitHoles(const MeasurementTable& table,
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured) {
+                    std::vector<double>* measured,
+                    std::vector<const TableRow*>* rows) {
     const HolesParams p = HolesParamsFromArray(x.data());
     for (const TableRow& row : table.rows) {
       const glm::dvec3 m = HolesTransmittance(
@@ -185,6 +186,7 @@ HolesFitResult FitHoles(const MeasurementTable& table,
       for (int c = 0; c < table.channels; ++c) {
         model->push_back(m[c]);
         measured->push_back(row.value[c]);
+        if (rows) rows->push_back(&row);
       }
     }
   };

@@ -235,6 +235,36 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
   Mark(fix, "--fix", false, specs);
 }
 
+std::string NonFiniteRow(const LeastSquaresProblem& lsq,
+                         const std::vector<double>& x) {
+  std::vector<double> model, measured;
+  std::vector<const TableRow*> rows;
+  lsq.predict(x, &model, &measured, &rows);
+  for (size_t i = 0; i < model.size(); ++i) {
+    if (std::isfinite(model[i]) && std::isfinite(model[i] - measured[i])) {
+      continue;
+    }
+    const TableRow& row = *rows[i];
+    std::ostringstream out;
+    out.precision(6);
+    out << "the model value is " << model[i] << " (data " << measured[i]
+        << ") at ";
+    if (row.source_line > 0) {
+      out << "line " << row.source_line << " of the table";
+    } else {
+      out << "a row made in memory";
+    }
+    out << ", wi (" << row.wi.x << ", " << row.wi.y << ", " << row.wi.z
+        << "), wo (" << row.wo.x << ", " << row.wo.y << ", " << row.wo.z
+        << "), with";
+    for (size_t k = 0; k < lsq.specs.size() && k < x.size(); ++k) {
+      out << (k ? ", " : " ") << lsq.specs[k].name << " = " << x[k];
+    }
+    return out.str();
+  }
+  return "";
+}
+
 double EvaluateCost(const LeastSquaresProblem& lsq,
                     const std::vector<double>& x0) {
   std::vector<double> x = x0;
@@ -294,9 +324,17 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     } else if (!best.usable && best_x.empty()) {
       best.termination =
           ceres::TerminationTypeToString(summary.termination_type);
-      best.message = finite
-                         ? summary.message
-                         : "non-finite cost or parameters: " + summary.message;
+      // A model value that is not finite is named with its row (issue 8),
+      // at the start when the solver could not leave it.
+      std::string where = NonFiniteRow(lsq, x);
+      if (where.empty() && x != starts[s]) where = NonFiniteRow(lsq, starts[s]);
+      if (!where.empty()) {
+        best.message = where + " (solver: " + summary.message + ")";
+      } else {
+        best.message =
+            finite ? summary.message
+                   : "non-finite cost or parameters: " + summary.message;
+      }
     }
   }
   best.starts = static_cast<int>(starts.size());
@@ -319,7 +357,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       best.message = msg.str();
     }
     std::vector<double> model, measured;
-    lsq.predict(x, &model, &measured);
+    lsq.predict(x, &model, &measured, nullptr);
     double se = 0.0, ss = 0.0;
     for (size_t i = 0; i < model.size(); ++i) {
       se += (model[i] - measured[i]) * (model[i] - measured[i]);

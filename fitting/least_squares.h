@@ -44,10 +44,13 @@ struct LeastSquaresProblem {
   std::function<void(const std::vector<double*>& blocks,
                      ceres::LossFunction* loss, ceres::Problem* problem)>
       add_residuals;
-  // Model values minus data and the data, in data units, for rms errors:
-  // called with the final x; returns pairs (model, measured) flattened.
+  // Model values and the data, in data units, for rms errors and for
+  // naming the row of a non-finite value: called with a solution or a
+  // start; returns pairs (model, measured) flattened, and (when `rows` is
+  // not null) the table row of each pair.
   std::function<void(const std::vector<double>& x, std::vector<double>* model,
-                     std::vector<double>* measured)>
+                     std::vector<double>* measured,
+                     std::vector<const TableRow*>* rows)>
       predict;
 };
 
@@ -67,6 +70,12 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& problem,
 void ApplyFreeFix(const std::vector<std::string>& fix,
                   const std::vector<std::string>& free_only,
                   std::vector<ParameterSpec>* specs);
+
+// The first pair of `lsq.predict` at x whose model value, or its
+// difference from the data, is not finite, named by its table line,
+// directions and the parameters; "" when every value is finite.
+std::string NonFiniteRow(const LeastSquaresProblem& lsq,
+                         const std::vector<double>& x);
 
 // Half the sum of squared residuals at x (no solve), for ranking starts.
 double EvaluateCost(const LeastSquaresProblem& problem,

@@ -387,13 +387,15 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured) {
+                    std::vector<double>* measured,
+                    std::vector<const TableRow*>* rows) {
     const SlabParams p = FromX(x, shared_tau, one_channel);
     for (const Sample& s : samples) {
       const glm::dvec3 m = SlabValue(p, s.row->wi, s.row->wo, s.quantity);
       for (int c = 0; c < s.channels; ++c) {
         model->push_back(m[c]);
         measured->push_back(s.row->value[c]);
+        if (rows) rows->push_back(s.row);
       }
     }
   };

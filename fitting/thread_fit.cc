@@ -98,7 +98,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     }
   };
   lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured) {
+                    std::vector<double>* measured,
+                    std::vector<const TableRow*>* rows) {
     const ThreadParams p = ThreadParamsFromArray(x.data());
     for (const TableRow& row : table.rows) {
       const glm::dvec3 m = x[ThreadParams::kSize] *
@@ -106,6 +107,7 @@ ThreadFitResult FitThread(const MeasurementTable& table,
       for (int c = 0; c < table.channels; ++c) {
         model->push_back(m[c]);
         measured->push_back(row.value[c]);
+        if (rows) rows->push_back(&row);
       }
     }
   };

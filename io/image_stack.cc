@@ -39,7 +39,6 @@ using text_util::Quote;
 using text_util::SplitFields;
 using text_util::Trim;
 
-constexpr double kDegreesPerRadian = 180.0 / kPi;
 // Largest image accepted (pixels), against corrupt headers.
 constexpr int64_t kMaxPixels = int64_t{1} << 28;
 

@@ -28,9 +28,6 @@ using text_util::Quote;
 using text_util::SplitFields;
 using text_util::Trim;
 
-constexpr double kDegreesPerRadian = 180.0 / kPi;
-constexpr double kRadiansPerDegree = kPi / 180.0;
-
 // Columns a table may have. The order is the order of semantic checks.
 enum ColumnId : int {
   kThetaI,
@@ -389,12 +386,23 @@ void TableParser::ParseRow(std::string_view text, int line) {
     row.wo = vector_at(kWoX);
   }
 
+  // Values, sigmas and weights beyond kMaxTableMagnitude (or sigmas below its
+  // inverse) are not measurements: their squared normalised residuals
+  // would overflow a fit's cost.
+  auto check_magnitude = [&](int column) {
+    if (std::abs(numbers_[column]) > kMaxTableMagnitude) {
+      fail_at(column, FormatNumber(numbers_[column]) +
+                          " is out of range (magnitude at most 1e30)");
+    }
+    return numbers_[column];
+  };
   if (!has_values_) {
     row.value = glm::dvec3(0.0);
   } else if (table.channels == 1) {
-    row.value = glm::dvec3(numbers_[kValue]);
+    row.value = glm::dvec3(check_magnitude(kValue));
   } else {
-    row.value = glm::dvec3(numbers_[kR], numbers_[kG], numbers_[kB]);
+    row.value = glm::dvec3(check_magnitude(kR), check_magnitude(kG),
+                           check_magnitude(kB));
   }
 
   auto check_sigma = [&](int column) {
@@ -402,7 +410,11 @@ void TableParser::ParseRow(std::string_view text, int line) {
       fail_at(column,
               "sigma must be positive, got " + FormatNumber(numbers_[column]));
     }
-    return numbers_[column];
+    if (numbers_[column] < 1.0 / kMaxTableMagnitude) {
+      fail_at(column, "sigma " + FormatNumber(numbers_[column]) +
+                          " is out of range (at least 1e-30)");
+    }
+    return check_magnitude(column);
   };
   if (Has(kSigma)) {
     row.sigma = glm::dvec3(check_sigma(kSigma));
@@ -418,7 +430,7 @@ void TableParser::ParseRow(std::string_view text, int line) {
       fail_at(kWeight, "weight must be non-negative, got " +
                            FormatNumber(numbers_[kWeight]));
     }
-    row.weight = numbers_[kWeight];
+    row.weight = check_magnitude(kWeight);
   }
 
   if (Has(kAlpha)) {

@@ -27,6 +27,11 @@ enum class DirectionColumns { kAngles, kVectors };
 std::optional<Quantity> ParseQuantity(const std::string& text);
 const char* QuantityName(Quantity quantity);
 
+// The largest magnitude of a value, sigma or weight a table may hold (and
+// the smallest sigma is its inverse): beyond it, a squared normalised
+// residual could overflow a fit's cost. ReadTable rejects such fields.
+inline constexpr double kMaxTableMagnitude = 1e30;
+
 struct TableRow {
   glm::dvec3 wi{0.0, 0.0, 1.0};  // unit vector towards the light
   glm::dvec3 wo{0.0, 0.0, 1.0};  // unit vector towards the viewer

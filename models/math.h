@@ -17,6 +17,8 @@
 namespace clothfit {
 
 inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kDegreesPerRadian = 180.0 / kPi;
+inline constexpr double kRadiansPerDegree = kPi / 180.0;
 
 template <typename T>
 using Vec3 = glm::vec<3, T>;

@@ -356,6 +356,24 @@ TEST(TableErrorTest, NegativeWeight) {
               {"data.csv:2:6:", "'weight'", "non-negative"});
 }
 
+// Fields whose squared normalised residual could overflow a fit's cost.
+TEST(TableErrorTest, HugeValuesSigmasAndWeights) {
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value\n1,2,3,4,1e300\n",
+              {"data.csv:2:5:", "'value'", "out of range"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,r,g,b\n1,2,3,4,1,-2e31,1\n",
+              {"data.csv:2:6:", "'g'", "out of range"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,sigma\n1,2,3,4,5,1e-40\n",
+              {"data.csv:2:6:", "'sigma'", "out of range"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,sigma\n1,2,3,4,5,1e31\n",
+              {"data.csv:2:6:", "'sigma'", "out of range"});
+  ExpectError("theta_i,phi_i,theta_o,phi_o,value,weight\n1,2,3,4,5,1e31\n",
+              {"data.csv:2:6:", "'weight'", "out of range"});
+  // The limits themselves are accepted.
+  EXPECT_EQ(ParseError("theta_i,phi_i,theta_o,phi_o,value,sigma,weight\n"
+                       "1,2,3,4,-1e30,1e-30,1e30\n"),
+            "");
+}
+
 TEST(TableErrorTest, AlphaOutOfRange) {
   ExpectError("theta_i,phi_i,theta_o,phi_o,value,alpha\n1,2,3,4,5,1.5\n",
               {"data.csv:2:6:", "column 'alpha': must be in [0, 1]"});

@@ -1,0 +1,110 @@
+// The shared least-squares machinery (fitting/least_squares.h): a model
+// value that is not finite during a fit is reported with its row (issue 8).
+#include "fitting/least_squares.h"
+
+#include <ceres/ceres.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace clothfit {
+namespace {
+
+// A toy model with a pole: value = p / wi.z, infinite for a light on the
+// horizon (wi.z = 0).
+template <typename T>
+T PoleModel(const T& p, const TableRow& row) {
+  return p / T(row.wi.z);
+}
+
+struct PoleResidual {
+  explicit PoleResidual(const TableRow& row) : row_(row) {}
+  template <typename T>
+  bool operator()(const T* p, T* residual) const {
+    residual[0] = (PoleModel(p[0], row_) - T(row_.value.x)) / T(row_.sigma.x);
+    return true;
+  }
+  static ceres::CostFunction* Create(const TableRow& row) {
+    return new ceres::AutoDiffCostFunction<PoleResidual, 1, 1>(
+        new PoleResidual(row));
+  }
+  const TableRow row_;
+};
+
+LeastSquaresProblem PoleProblem(const std::vector<TableRow>& rows) {
+  LeastSquaresProblem lsq;
+  lsq.specs = {ParameterSpec{"p", 0.0, 10.0, true, true}};
+  lsq.block_sizes = {1};
+  lsq.add_residuals = [&rows](const std::vector<double*>& blocks,
+                              ceres::LossFunction* loss,
+                              ceres::Problem* problem) {
+    for (const TableRow& row : rows) {
+      problem->AddResidualBlock(PoleResidual::Create(row), loss, blocks[0]);
+    }
+  };
+  lsq.predict = [&rows](const std::vector<double>& x,
+                        std::vector<double>* model,
+                        std::vector<double>* measured,
+                        std::vector<const TableRow*>* out_rows) {
+    for (const TableRow& row : rows) {
+      model->push_back(PoleModel(x[0], row));
+      measured->push_back(row.value.x);
+      if (out_rows) out_rows->push_back(&row);
+    }
+  };
+  return lsq;
+}
+
+// Rows of the model with p = 2 (value 2 / wi.z; 1 on the horizon) at
+// lines 3, 4, ... of a table.
+std::vector<TableRow> PoleRows(const std::vector<double>& cos_theta) {
+  std::vector<TableRow> rows;
+  for (size_t i = 0; i < cos_theta.size(); ++i) {
+    TableRow row;
+    const double c = cos_theta[i];
+    row.wi = glm::dvec3(std::sqrt(1.0 - c * c), 0.0, c);
+    row.value = glm::dvec3(c > 0.0 ? 2.0 / c : 1.0);
+    row.source_line = static_cast<int>(i) + 3;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(LeastSquaresTest, FiniteModelIsSolvedAndNamesNoRow) {
+  const std::vector<TableRow> rows = PoleRows({1.0, 0.8, 0.5, 0.3});
+  const LeastSquaresProblem lsq = PoleProblem(rows);
+  EXPECT_EQ(NonFiniteRow(lsq, {1.0}), "");
+  std::vector<double> x = {1.0};
+  const FitReport report = SolveLeastSquares(lsq, {{1.0}}, SolverOptions(), &x);
+  ASSERT_TRUE(report.usable) << report.message;
+  EXPECT_NEAR(x[0], 2.0, 1e-6);
+}
+
+TEST(LeastSquaresTest, NonFiniteModelValueIsReportedWithItsRow) {
+  // The third row (line 5) has its light on the horizon: p / 0 = inf.
+  const std::vector<TableRow> rows = PoleRows({1.0, 0.8, 0.0, 0.3});
+  const LeastSquaresProblem lsq = PoleProblem(rows);
+  const std::string where = NonFiniteRow(lsq, {1.0});
+  EXPECT_NE(where.find("line 5 of the table"), std::string::npos) << where;
+  EXPECT_NE(where.find("inf"), std::string::npos) << where;
+  EXPECT_NE(where.find("p = 1"), std::string::npos) << where;
+
+  std::vector<double> x = {1.0};
+  const FitReport report = SolveLeastSquares(lsq, {{1.0}}, SolverOptions(), &x);
+  EXPECT_FALSE(report.usable);
+  EXPECT_NE(report.message.find("line 5 of the table"), std::string::npos)
+      << report.message;
+  EXPECT_EQ(report.message.find("nan"), std::string::npos) << report.message;
+}
+
+TEST(LeastSquaresTest, RowMadeInMemoryIsSaidToBe) {
+  std::vector<TableRow> rows = PoleRows({0.0});
+  rows[0].source_line = 0;
+  const std::string where = NonFiniteRow(PoleProblem(rows), {1.0});
+  EXPECT_NE(where.find("a row made in memory"), std::string::npos) << where;
+}
+
+}  // namespace
+}  // namespace clothfit
