@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/image_input.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 #include "models/math.h"
@@ -52,20 +53,6 @@ std::atomic<unsigned> temp_counter{0};
 [[noreturn]] void Fail(const std::string& file, int line, int column,
                        const std::string& problem) {
   throw InputError(FormatLocation(file, line, column) + ": " + problem);
-}
-
-// An OpenImageIO error message (which may span lines) on one line.
-std::string LibraryError(const std::string& message) {
-  std::string line;
-  for (char c : Trim(message)) {
-    if (c == '\r') continue;
-    if (c == '\n') {
-      line += "; ";
-    } else {
-      line += c;
-    }
-  }
-  return line.empty() ? "unknown error" : line;
 }
 
 // One image of the manifest.
@@ -207,49 +194,41 @@ Image ReadImage(const std::string& path, const std::string& manifest,
     Fail(path, 0, 0,
          std::string("cannot read image: ") + std::strerror(EISDIR) + listed);
   }
-  OIIO::ImageSpec config;
-  // Values as stored: PNG/TIFF colours are not multiplied by alpha.
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    Fail(path, 0, 0,
-         "cannot read image: " + LibraryError(OIIO::geterror()) + listed);
+  ImagePixels pixels;
+  std::string error_message;
+  auto check_header = [&](const ImagePixels& header) {
+    if (header.width < 1 || header.height < 1 || header.depth > 1 ||
+        int64_t{header.width} * header.height > kMaxPixels) {
+      Fail(path, 0, 0,
+           "unsupported image size " + std::to_string(header.width) + " x " +
+               std::to_string(header.height) + " x " +
+               std::to_string(header.depth) + listed);
+    }
+    if (header.channels < 1 || header.channels > 4) {
+      Fail(path, 0, 0,
+           "image has " + std::to_string(header.channels) +
+               " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
+               "(rgba)" +
+               listed);
+    }
+  };
+  if (!ReadImagePixels(path, check_header, &pixels, &error_message)) {
+    Fail(path, 0, 0, "cannot read image: " + error_message + listed);
   }
-  const OIIO::ImageSpec& spec = in->spec();
   Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  if (image.width < 1 || image.height < 1 || spec.depth > 1 ||
-      int64_t{image.width} * image.height > kMaxPixels) {
-    Fail(path, 0, 0,
-         "unsupported image size " + std::to_string(image.width) + " x " +
-             std::to_string(image.height) + " x " + std::to_string(spec.depth) +
-             listed);
-  }
-  if (image.channels < 1 || image.channels > 4) {
-    Fail(path, 0, 0,
-         "image has " + std::to_string(image.channels) +
-             " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
-             "(rgba)" +
-             listed);
-  }
+  image.width = pixels.width;
+  image.height = pixels.height;
+  image.channels = pixels.channels;
   if (image.channels == 2 || image.channels == 4) {
-    image.alpha = spec.alpha_channel >= 0 && spec.alpha_channel < image.channels
-                      ? spec.alpha_channel
-                      : image.channels - 1;
+    image.alpha =
+        pixels.alpha_channel >= 0 && pixels.alpha_channel < image.channels
+            ? pixels.alpha_channel
+            : image.channels - 1;
   }
   for (int c = 0; c < image.channels; ++c) {
     if (c != image.alpha) image.colour.push_back(c);
   }
-  image.pixels.resize(static_cast<size_t>(image.width) * image.height *
-                      image.channels);
-  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
-                      image.pixels.data())) {
-    Fail(path, 0, 0,
-         "cannot read image: " + LibraryError(in->geterror()) + listed);
-  }
-  in->close();
+  image.pixels = std::move(pixels.pixels);
   return image;
 }
 
@@ -266,7 +245,7 @@ void WriteImage(const std::string& path, int width, int height,
                 const std::vector<float>& pixels) {
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
   if (!out) {
-    Fail(path, 0, 0, "cannot write image: " + LibraryError(OIIO::geterror()));
+    Fail(path, 0, 0, "cannot write image: " + OneLineMessage(OIIO::geterror()));
   }
   const int channels = colour_channels + (with_alpha ? 1 : 0);
   OIIO::ImageSpec spec(
@@ -307,7 +286,7 @@ void WriteImage(const std::string& path, int width, int height,
   if (!out->open(temp, spec) ||
       !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
       !out->close()) {
-    problem = "cannot write image: " + LibraryError(out->geterror());
+    problem = "cannot write image: " + OneLineMessage(out->geterror());
   } else if (std::rename(temp.c_str(), path.c_str()) != 0) {
     problem = std::string("cannot write: ") + std::strerror(errno);
   }

@@ -1,7 +1,5 @@
 #include "io/mask_io.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/image_input.h"
 #include "io/input_error.h"
 
 namespace clothfit {
@@ -20,15 +19,6 @@ namespace {
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
-}
-
-// An OpenImageIO message on one line.
-std::string OneLineError(std::string message) {
-  for (char& c : message) {
-    if (c == '\n' || c == '\r') c = ' ';
-  }
-  while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message.empty() ? "unknown error" : message;
 }
 
 }  // namespace
@@ -61,35 +51,31 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   if (!std::filesystem::is_regular_file(path, error)) {
     Fail(path, "cannot read mask: no such file");
   }
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
-  if (!in) {
-    Fail(path, "cannot read mask image: " + OneLineError(OIIO::geterror()));
+  ImagePixels image;
+  std::string error_message;
+  auto check_header = [&](const ImagePixels& header) {
+    const int64_t width = header.width, height = header.height;
+    if (width < 1 || height < 1 || header.depth > 1 ||
+        width * height > kMaxMaskTexels) {
+      Fail(path, "unsupported mask size " + std::to_string(width) + " x " +
+                     std::to_string(height) + " (at most " +
+                     std::to_string(kMaxMaskTexels) + " texels)");
+    }
+    if (header.channels < 1) Fail(path, "mask image has no channels");
+  };
+  if (!ReadImagePixels(path, check_header, &image, &error_message)) {
+    Fail(path, "cannot read mask image: " + error_message);
   }
-  const OIIO::ImageSpec& spec = in->spec();
-  const int64_t width = spec.width, height = spec.height;
-  if (width < 1 || height < 1 || spec.depth > 1 ||
-      width * height > kMaxMaskTexels) {
-    Fail(path, "unsupported mask size " + std::to_string(width) + " x " +
-                   std::to_string(height) + " (at most " +
-                   std::to_string(kMaxMaskTexels) + " texels)");
-  }
-  const int channels = spec.nchannels;
-  if (channels < 1) Fail(path, "mask image has no channels");
-  int alpha = spec.alpha_channel;
+  const int64_t width = image.width, height = image.height;
+  const int channels = image.channels;
+  int alpha = image.alpha_channel;
   if (alpha < 0 && (channels == 2 || channels == 4)) alpha = channels - 1;
   const bool use_alpha = alpha >= 0 && options.source != MaskSource::kLuminance;
   if (options.source == MaskSource::kAlpha && alpha < 0) {
     Fail(path, "mask image has no alpha channel (" + std::to_string(channels) +
                    " channels); use the luminance");
   }
-  std::vector<float> pixels(static_cast<size_t>(width * height) * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT,
-                      pixels.data())) {
-    Fail(path, "cannot read mask image: " + OneLineError(in->geterror()));
-  }
-  in->close();
+  const std::vector<float>& pixels = image.pixels;
 
   std::vector<int> colour;  // the channels other than alpha
   for (int c = 0; c < channels; ++c) {

@@ -28,6 +28,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -228,7 +229,7 @@ Index ReadIndex(const std::string& name) {
   try {
     index = json::parse(text);
   } catch (const json::exception& error) {
-    Fail(name, std::string("invalid JSON: ") + error.what());
+    Fail(name, "invalid JSON: " + text_util::Printable(error.what()));
   }
   if (!index.is_object()) Fail(name, "expected a JSON object");
   const auto format = index.find("format");

@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -209,12 +210,19 @@ void AppendPretty(const json& j, int indent, std::string* out) {
 json ParseJson(const std::string& text, const std::string& name) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message carries "at line L, column C".
-    std::string what = e.what();
+  } catch (const json::exception& e) {
+    // A parse error's message carries "at line L, column C" and the bytes
+    // last read (escaped: they may not be UTF-8); a number too large for a
+    // double is an out_of_range error (406) without a position.
+    std::string what = text_util::Printable(e.what());
     const size_t pos = what.find("parse error");
-    throw InputError(name + ": invalid JSON: " +
-                     (pos == std::string::npos ? what : what.substr(pos)));
+    const size_t bracket = what.find("] ");
+    if (pos != std::string::npos) {
+      what = what.substr(pos);
+    } else if (bracket != std::string::npos) {
+      what = what.substr(bracket + 2);
+    }
+    throw InputError(name + ": invalid JSON: " + what);
   }
 }
 

@@ -27,21 +27,30 @@ std::string Lower(std::string_view text) {
   return lower;
 }
 
-std::string Quote(std::string_view text) {
-  std::string quoted = "'";
-  for (size_t i = 0; i < text.size() && i < kMaxQuotedLength; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f && c != '\'' && c != '\\') {
-      quoted += static_cast<char>(c);
+std::string Printable(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += ch;
     } else {
       char escaped[8];
       std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
-      quoted += escaped;
+      out += escaped;
     }
   }
+  return out;
+}
+
+std::string Quote(std::string_view text) {
+  std::string quoted = Printable(text.substr(0, kMaxQuotedLength));
+  // A quote inside the field is escaped like any other odd byte.
+  for (size_t pos = quoted.find('\''); pos != std::string::npos;
+       pos = quoted.find('\'', pos + 4)) {
+    quoted.replace(pos, 1, "\\x27");
+  }
   if (text.size() > kMaxQuotedLength) quoted += "...";
-  quoted += '\'';
-  return quoted;
+  return "'" + quoted + "'";
 }
 
 std::vector<std::string_view> SplitFields(std::string_view line) {

@@ -22,6 +22,10 @@ std::string_view Trim(std::string_view text);
 // ASCII-only lower-casing; other bytes pass through unchanged.
 std::string Lower(std::string_view text);
 
+// `text` with every byte that is not printable ASCII (and the backslash)
+// written as \xNN: safe to print in a one-line message.
+std::string Printable(std::string_view text);
+
 // Quotes (part of) a field for an error message: printable ASCII is kept,
 // other bytes are escaped, fields longer than kMaxQuotedLength are shortened.
 std::string Quote(std::string_view text);
