@@ -16,6 +16,7 @@
 #include "holes/hole_charts.h"
 #include "holes/hole_exr.h"
 #include "holes/hole_texture.h"
+#include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/mask_io.h"
 
@@ -440,6 +441,7 @@ int RunFitHoles(int argc, char** argv) {
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out = args.Required("out");
+  CheckWritable(out);  // before the fit, not after
   HolesFitOptions options;
   options.solver = ReadSolverOptions(args);
   options.method = MethodOption(args);

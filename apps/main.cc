@@ -72,7 +72,11 @@ int main(int argc, char** argv) {
       return 3;
     }
   }
-  std::cerr << "error: unknown command '" << name << "'\n";
-  PrintUsage(std::cerr);
+  // One line, like every bad input: the commands, and where the usage is.
+  std::string names;
+  for (const Command& c : kCommands)
+    names += (names.empty() ? "" : ", ") + std::string(c.name);
+  std::cerr << "error: unknown command '" << name << "' (commands: " << names
+            << "; see 'clothfit --help')\n";
   return 2;
 }

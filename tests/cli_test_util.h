@@ -92,18 +92,19 @@ inline size_t Count(const std::string& text, const std::string& piece) {
   return n;
 }
 
-// Bad input: exit status 2, one error message on stderr holding every
-// piece, nothing on stdout, and no file left behind in `dir` other than
-// those it held before.
+// Bad input: exit status 2, one error message on stderr (one line,
+// "error: ...") holding every piece, nothing on stdout, and no file left
+// behind in `dir` other than those it held before.
 inline void ExpectBadInput(const std::filesystem::path& dir,
                            const std::vector<std::string>& args,
-                           std::initializer_list<std::string> pieces) {
+                           const std::vector<std::string>& pieces) {
   const std::set<std::string> before = FilesIn(dir);
   const RunResult r = RunClothfit(dir, args);
   std::string what;
   for (const std::string& a : args) what += " " + a;
   EXPECT_EQ(r.status, 2) << what << "\n" << Describe(r);
-  EXPECT_EQ(Count(r.err, "error"), 1u) << what << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << what << "\n" << r.err;
+  EXPECT_EQ(Count(r.err, "\n"), 1u) << what << "\n" << r.err;
   EXPECT_EQ(r.out, "") << what;
   for (const std::string& piece : pieces) {
     EXPECT_NE(r.err.find(piece), std::string::npos)

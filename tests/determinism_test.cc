@@ -13,6 +13,7 @@
 #include "io/mask_io.h"
 #include "io/param_mipmap.h"
 #include "io/table.h"
+#include "io_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -25,16 +26,7 @@ using testing_util::RunResult;
 
 constexpr double kThreadTolerance = 1e-9;  // relative, issue 8
 
-fs::path TestDir() {
-  const ::testing::TestInfo* info =
-      ::testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path dir =
-      fs::path(CLOTHFIT_TEST_TMP) / "determinism" /
-      (std::string(info->test_suite_name()) + "." + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path TestDir() { return testing_util::FreshTestDir("determinism_"); }
 
 // Every number of `a` equals the one at the same place in `b` within a
 // relative tolerance; the structure (keys, sizes, strings) is identical.
