@@ -173,10 +173,17 @@ int RunFitLafortune(int argc, char** argv) {
   if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
   const LafortuneMipResult result = FitLafortuneMip(table, options);
   int unusable = 0;
+  std::string first_unusable;  // where, and why
   double worst = 0.0;
-  for (const LafortuneLevel& level : result.levels) {
-    for (const TexelFit& t : level.texels) {
-      unusable += !t.usable;
+  for (size_t l = 0; l < result.levels.size(); ++l) {
+    const LafortuneLevel& level = result.levels[l];
+    for (size_t i = 0; i < level.texels.size(); ++i) {
+      const TexelFit& t = level.texels[i];
+      if (!t.usable && unusable++ == 0) {
+        first_unusable = "level " + std::to_string(l) + ", texel (" +
+                         std::to_string(i % level.width) + ", " +
+                         std::to_string(i / level.width) + "): " + t.message;
+      }
       worst = std::max(worst, t.relative_rms);
     }
   }
@@ -210,7 +217,8 @@ int RunFitLafortune(int argc, char** argv) {
   if (unusable > 0) {
     std::cerr << "error: " << unusable
               << " texel fit(s) reached no usable solution (zero in the "
-                 "output)\n";
+                 "output); the first at "
+              << first_unusable << "\n";
     return 1;
   }
   return 0;

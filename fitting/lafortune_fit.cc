@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <sstream>
 #include <unordered_map>
 
 #include "io/input_error.h"
@@ -234,8 +235,29 @@ TexelSamples Subsample(const TexelSamples& samples, int stride) {
     sub.weight.push_back(samples.weight[i]);
     sub.view.push_back(samples.view[i]);
     sub.count_rows.push_back(samples.count_rows[i]);
+    sub.source_line.push_back(samples.source_line[i]);
   }
   return sub;
+}
+
+// Names the first sample whose model value is not finite (issue 8): the
+// table line of its first row and its directions in the texel's frame.
+std::string NonFiniteSample(const TexelSamples& s,
+                            const std::vector<glm::dvec3>& t,
+                            const LafortuneParams& p) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    const glm::dvec3 m = t[s.view[i]] * LafortuneF1(p, s.l[i], s.v[i]);
+    if (std::isfinite(glm::dot(m - s.value[i], glm::dvec3(1.0)))) continue;
+    std::ostringstream out;
+    out.precision(6);
+    out << "the model value is (" << m.x << ", " << m.y << ", " << m.z
+        << ") at line " << s.source_line[i] << " of the table, light ("
+        << s.l[i].x << ", " << s.l[i].y << ", " << s.l[i].z << ") and view ("
+        << s.v[i].x << ", " << s.v[i].y << ", " << s.v[i].z
+        << ") in the texel's frame";
+    return out.str();
+  }
+  return "non-finite model values";
 }
 
 bool Finite(const LafortuneParams& p) {
@@ -302,6 +324,7 @@ TexelSamples CollectSamples(const MeasurementTable& table,
       s.view.push_back(view);
       s.weight.push_back(glm::dvec3(0.0));
       s.value.push_back(glm::dvec3(0.0));
+      s.source_line.push_back(row.source_line);
       sum_wy.push_back(glm::dvec3(0.0));
     }
     s.weight[k] += w;
@@ -521,7 +544,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   out.rms = std::sqrt(se / (3.0 * samples.size()));
   out.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
   out.usable = std::isfinite(out.rms);
-  if (!out.usable) out.message = "non-finite model values";
+  if (!out.usable) out.message = NonFiniteSample(samples, t, best);
   return out;
 }
 

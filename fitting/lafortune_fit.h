@@ -24,6 +24,7 @@ struct TexelSamples {
   std::vector<glm::dvec3> l, v, value, weight;
   std::vector<int> view;           // index into views
   std::vector<int> count_rows;     // table rows merged into each sample
+  std::vector<int> source_line;    // table line of each sample's first row
   std::vector<glm::dvec3> views;   // the distinct view directions
   std::vector<double> view_alpha;  // mean alpha of each view's samples
   size_t size() const { return l.size(); }
