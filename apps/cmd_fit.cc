@@ -56,15 +56,20 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   return s;
 }
 
-MeasurementTable ReadDataOption(const CommandArgs& args) {
+MeasurementTable ReadTableOption(const CommandArgs& args,
+                                 const std::string& path) {
   ReadTableOptions read_options;
   read_options.skip_invalid = args.Has("skip-invalid");
-  ReadTableResult read = ReadTable(args.Required("data"), read_options);
+  ReadTableResult read = ReadTable(path, read_options);
   if (read.skipped > 0) {
     std::cerr << "warning: skipped " << read.skipped
               << " invalid row(s); first: " << read.first_skip_reason << "\n";
   }
-  return std::move(read.table);
+  return std::move(read.table);  // not a copy: ~150 bytes a row
+}
+
+MeasurementTable ReadDataOption(const CommandArgs& args) {
+  return ReadTableOption(args, args.Required("data"));
 }
 
 int FinishFit(const FitReport& report, const std::vector<double>& truth,

@@ -111,14 +111,7 @@ int RunFitLafortune(int argc, char** argv) {
   if (args.Has("stack")) {
     table = ReadImageStack(args.Get("stack"));
   } else {
-    ReadTableOptions read_options;
-    read_options.skip_invalid = args.Has("skip-invalid");
-    const ReadTableResult read = ReadTable(args.Get("data"), read_options);
-    if (read.skipped > 0) {
-      std::cerr << "warning: skipped " << read.skipped
-                << " invalid row(s); first: " << read.first_skip_reason << "\n";
-    }
-    table = read.table;
+    table = ReadTableOption(args, args.Get("data"));
   }
 
   if (!table.has_texels) {  // one model for the whole table

@@ -15,18 +15,11 @@ int RunFitSlab(const CommandArgs& args, const SolverOptions& solver) {
       args.Fail(std::string("--") + option + " is not available for slab fits");
     }
   }
-  ReadTableOptions read_options;
-  read_options.skip_invalid = args.Has("skip-invalid");
   const std::vector<std::string> paths = SplitList(args.Required("data"));
   if (paths.empty()) args.Fail("option '--data': needs a table");
   std::vector<MeasurementTable> tables;
   for (const std::string& path : paths) {
-    const ReadTableResult read = ReadTable(path, read_options);
-    if (read.skipped > 0) {
-      std::cerr << "warning: skipped " << read.skipped
-                << " invalid row(s); first: " << read.first_skip_reason << "\n";
-    }
-    tables.push_back(read.table);
+    tables.push_back(ReadTableOption(args, path));
   }
 
   SlabFitOptions options;

@@ -54,6 +54,10 @@ std::string ModelArgument(int argc, char** argv, int first = 2);
 void AddSolverOptions(CommandArgs* args);
 SolverOptions ReadSolverOptions(const CommandArgs& args);
 
+// Reads the table at `path`, dropping invalid rows (with a warning naming
+// the first) when the command has --skip-invalid and it is given.
+MeasurementTable ReadTableOption(const CommandArgs& args,
+                                 const std::string& path);
 // The table of --data, with --skip-invalid (a warning says how many rows
 // were dropped).
 MeasurementTable ReadDataOption(const CommandArgs& args);

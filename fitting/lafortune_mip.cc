@@ -72,42 +72,53 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     width = std::max(width, row.s + 1);
     height = std::max(height, row.t + 1);
   }
-  // Rows of every texel of every level: level 0 from the table, level l+1
-  // from 2 x 2 groups of level l (ROUND_DOWN: an odd last row/column joins
-  // the group before it).
-  std::vector<std::vector<std::vector<size_t>>> rows;  // [level][texel]
-  rows.emplace_back(static_cast<size_t>(width) * height);
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    rows[0][table.rows[i].t * width + table.rows[i].s].push_back(i);
+  // Rows of every texel of the level being fitted: level 0 from the table
+  // (counted first, so that no list grows by doubling), level l+1 from 2 x 2
+  // groups of level l (ROUND_DOWN: an odd last row/column joins the group
+  // before it), made when level l is done. One level's lists at a time:
+  // 8 bytes a row, not 8 per row and level.
+  std::vector<std::vector<size_t>> texel_rows(static_cast<size_t>(width) *
+                                              height);
+  {
+    std::vector<size_t> counts(texel_rows.size(), 0);
+    for (const TableRow& row : table.rows) ++counts[row.t * width + row.s];
+    for (size_t t = 0; t < counts.size(); ++t) texel_rows[t].reserve(counts[t]);
+    for (size_t i = 0; i < table.rows.size(); ++i) {
+      texel_rows[table.rows[i].t * width + table.rows[i].s].push_back(i);
+    }
   }
   std::vector<std::pair<int, int>> sizes = {{width, height}};
   while (options.mip && (sizes.back().first > 1 || sizes.back().second > 1)) {
-    const auto [w, h] = sizes.back();
-    const int w2 = std::max(1, w / 2), h2 = std::max(1, h / 2);
+    sizes.push_back({std::max(1, sizes.back().first / 2),
+                     std::max(1, sizes.back().second / 2)});
+  }
+  auto group_rows = [&](size_t l) {  // level l's lists -> level l + 1's
+    const auto [w, h] = sizes[l];
+    const auto [w2, h2] = sizes[l + 1];
     std::vector<std::vector<size_t>> next(static_cast<size_t>(w2) * h2);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
         const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
-        const std::vector<size_t>& from = rows.back()[y * w + x];
+        std::vector<size_t>& from = texel_rows[y * w + x];
         std::vector<size_t>& to = next[y2 * w2 + x2];
         to.insert(to.end(), from.begin(), from.end());
+        std::vector<size_t>().swap(from);
       }
     }
     for (std::vector<size_t>& r : next) std::sort(r.begin(), r.end());
-    rows.push_back(std::move(next));
-    sizes.push_back({w2, h2});
-  }
+    texel_rows = std::move(next);
+  };
   // Level by level (a group's fit starts from its children's, which must be
   // done); within a level every texel is one job. Results land in fixed
   // slots, so the thread count does not change them.
   size_t all_jobs = 0;
-  for (size_t l = 0; l < rows.size(); ++l) {
+  for (const auto& [w, h] : sizes) {
     LafortuneLevel level;
-    level.width = sizes[l].first;
-    level.height = sizes[l].second;
-    level.texels.resize(rows[l].size());
-    for (const std::vector<size_t>& r : rows[l]) level.samples += r.size();
-    all_jobs += rows[l].size();
+    level.width = w;
+    level.height = h;
+    level.texels.resize(static_cast<size_t>(w) * h);
+    level.samples = table.rows.size();  // every level holds every row
+    all_jobs += level.texels.size();
     out.levels.push_back(std::move(level));
   }
   int threads = options.threads > 0
@@ -117,10 +128,11 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
   std::mutex progress_mutex;
   int done = 0;
   std::exception_ptr error;
-  for (size_t l = 0; l < rows.size() && !error; ++l) {
+  for (size_t l = 0; l < sizes.size() && !error; ++l) {
+    if (l > 0) group_rows(l - 1);
     // The children of each texel of level l (level l - 1's texels in its
     // group).
-    std::vector<std::vector<const LafortuneModel*>> children(rows[l].size());
+    std::vector<std::vector<const LafortuneModel*>> children(texel_rows.size());
     if (l > 0) {
       const LafortuneLevel& below = out.levels[l - 1];
       const int w2 = out.levels[l].width, h2 = out.levels[l].height;
@@ -134,12 +146,12 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     }
     std::atomic<size_t> next_job{0};
     auto worker = [&]() {
-      for (size_t t = next_job++; t < rows[l].size(); t = next_job++) {
+      for (size_t t = next_job++; t < texel_rows.size(); t = next_job++) {
         try {
           LafortuneMipOptions texel_options = options;
           texel_options.fit.warm_starts = children[t];
           out.levels[l].texels[t] =
-              FitTexelRows(table, views, rows[l][t], texel_options);
+              FitTexelRows(table, views, texel_rows[t], texel_options);
         } catch (...) {
           std::lock_guard<std::mutex> lock(progress_mutex);
           if (!error) error = std::current_exception();
@@ -152,7 +164,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
       }
     };
     const int level_threads =
-        std::min(threads, static_cast<int>(rows[l].size()));
+        std::min(threads, static_cast<int>(texel_rows.size()));
     std::vector<std::thread> pool;
     for (int i = 1; i < level_threads; ++i) pool.emplace_back(worker);
     worker();
