@@ -20,6 +20,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/holes_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/linear_solver.h"
 #include "fitting/model_selection.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
@@ -119,6 +120,27 @@ void Say(const BenchOptions& o, const std::string& text) {
   if (o.progress) o.progress(text);
 }
 
+// One row per linear solver (fitting/linear_solver.h; the quick bench: the
+// two Eigen ones), the model's other knobs at their defaults; `run` fits
+// with the given solver.
+void SweepLinearSolvers(const BenchOptions& o, const std::string& model,
+                        const std::function<Outcome(LinearSolver)>& run,
+                        std::vector<BenchRow>* rows) {
+  const std::vector<LinearSolver> solvers =
+      o.quick ? std::vector<LinearSolver>{LinearSolver::kDenseQr,
+                                          LinearSolver::kDenseNormalCholesky}
+              : AllLinearSolvers();
+  for (LinearSolver s : solvers) {
+    const std::string config = "linear_solver=" + LinearSolverName(s);
+    Say(o, model + ": " + config);
+    BenchRow row = Measure(o, [&]() { return run(s); });
+    row.model = model;
+    row.config = config;
+    row.group = "linear solver";
+    rows->push_back(row);
+  }
+}
+
 // A synthetic problem: the truth's table with 2 % noise, and held-out
 // directions drawn from a second stream (wo over the whole sphere for the
 // thread and slab models).
@@ -155,6 +177,15 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
   const std::vector<int> caps =
       o.quick ? std::vector<int>{200} : std::vector<int>{10, 50, 200};
+  auto run = [&](const ThreadFitOptions& fit) {
+    const ThreadFitResult r = FitThread(table, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    out.param_error =
+        LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
+    return out;
+  };
   for (int s : starts) {
     for (int cap : caps) {
       const std::string config = "starts=" + std::to_string(s) +
@@ -163,16 +194,7 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       ThreadFitOptions fit;
       fit.solve_starts = s;
       fit.solver.max_iterations = cap;
-      BenchRow row = Measure(o, [&]() {
-        const ThreadFitResult r = FitThread(table, fit);
-        Outcome out;
-        out.success = r.report.usable && r.report.converged;
-        out.value_error =
-            HeldOutError(r.params, truth, held_out, table.quantity);
-        out.param_error =
-            LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
-        return out;
-      });
+      BenchRow row = Measure(o, [&]() { return run(fit); });
       row.model = "thread";
       row.config = config;
       row.group = "starts=" + std::to_string(s);
@@ -181,6 +203,14 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       rows->push_back(row);
     }
   }
+  SweepLinearSolvers(
+      o, "thread",
+      [&](LinearSolver solver) {
+        ThreadFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
 }
 
 // Cloth: the satin from the generic start, 2 % noise; knobs: the start
@@ -197,6 +227,16 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     bool multi_start;
     int starts;
   };
+  auto run = [&](const ClothFitOptions& fit) {
+    const ClothFitResult r = FitCloth(table, start, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    out.param_error =
+        LargestRelativeError(ClothParameterValues(r.params, truth),
+                             ClothParameterValues(truth, truth));
+    return out;
+  };
   std::vector<Knobs> knobs = {{false, 1}, {true, 1}, {true, 2}};
   if (!o.quick) knobs.push_back({true, 4});
   for (const Knobs& k : knobs) {
@@ -207,16 +247,7 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     ClothFitOptions fit;
     fit.multi_start = k.multi_start;
     fit.solve_starts = k.starts;
-    BenchRow row = Measure(o, [&]() {
-      const ClothFitResult r = FitCloth(table, start, fit);
-      Outcome out;
-      out.success = r.report.usable && r.report.converged;
-      out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
-      out.param_error =
-          LargestRelativeError(ClothParameterValues(r.params, truth),
-                               ClothParameterValues(truth, truth));
-      return out;
-    });
+    BenchRow row = Measure(o, [&]() { return run(fit); });
     row.model = "cloth";
     row.config = config;
     row.group = std::string("start search ") + (k.multi_start ? "on" : "off");
@@ -225,6 +256,14 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
                      k.starts == defaults.solve_starts;
     rows->push_back(row);
   }
+  SweepLinearSolvers(
+      o, "cloth",
+      [&](LinearSolver solver) {
+        ClothFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
   // Model size: each thread's tangent curve sampled at T points where it
   // has more offsets than that (as the --tolerance ladder does,
   // fitting/model_selection.h); the largest T is the weave as given.
@@ -313,6 +352,85 @@ std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
   return note;
 }
 
+// The held-out rows of each level-0 texel (s, t) of a gonio table.
+using TexelRows = std::map<std::pair<int, int>, std::vector<size_t>>;
+
+// The error of mip level `l` of a fit: for each texel (group) of the level,
+// the relative RMS of its model at the held-out rows of all the level-0
+// texels it pools (the group a level-0 texel joins as FitLafortuneMip
+// pools them: x -> min(x / 2, width - 1) per level); the mean over the
+// level's texels. *usable: every texel of the level fitted.
+double LevelError(const LafortuneMipResult& r, size_t l,
+                  const MeasurementTable& test, const ViewIndex& test_views,
+                  const TexelRows& test_rows, bool* usable) {
+  const LafortuneLevel& level = r.levels[l];
+  std::vector<std::vector<size_t>> pooled(level.texels.size());
+  for (const auto& [texel, indices] : test_rows) {
+    int x = texel.first, y = texel.second;
+    for (size_t k = 1; k <= l; ++k) {
+      x = std::min(x / 2, r.levels[k].width - 1);
+      y = std::min(y / 2, r.levels[k].height - 1);
+    }
+    std::vector<size_t>& to = pooled[y * level.width + x];
+    to.insert(to.end(), indices.begin(), indices.end());
+  }
+  *usable = true;
+  double sum = 0.0;
+  int n = 0;
+  for (size_t i = 0; i < level.texels.size(); ++i) {
+    *usable = *usable && level.texels[i].usable;
+    double rms = 0.0, rel = 0.0;
+    LafortuneErrors(level.texels[i].model, test, test_views, pooled[i], &rms,
+                    &rel);
+    sum += rel;
+    ++n;
+  }
+  return n ? sum / n : kNaN;
+}
+
+// Model size over mip levels: the default fit with all levels, timed
+// (o.repeats runs) level by level; per level a row of the model
+// "lafortune_mip" with its time, its error against the held-out rows
+// (LevelError) and its size = texels of the level.
+void BenchMipLevels(const BenchOptions& o, const MeasurementTable& train,
+                    const MeasurementTable& test, const ViewIndex& test_views,
+                    const TexelRows& test_rows, std::vector<BenchRow>* rows) {
+  Say(o, "lafortune: mip levels");
+  LafortuneMipOptions fit;
+  fit.mip = true;
+  std::vector<std::vector<double>> seconds;  // [level][run]
+  LafortuneMipResult r;
+  for (int run = 0; run < std::max(1, o.repeats); ++run) {
+    r = FitLafortuneMip(train, fit);
+    seconds.resize(r.levels.size());
+    for (size_t l = 0; l < r.levels.size(); ++l) {
+      seconds[l].push_back(r.levels[l].seconds);
+    }
+  }
+  for (size_t l = 0; l < r.levels.size(); ++l) {
+    const LafortuneLevel& level = r.levels[l];
+    BenchRow row;
+    row.model = "lafortune_mip";
+    row.config = "level=" + std::to_string(l) + " (" +
+                 std::to_string(level.width) + " x " +
+                 std::to_string(level.height) + ")";
+    row.label = "level " + std::to_string(l);
+    row.group = "lobes=2 lut=on";
+    row.repeats = static_cast<int>(seconds[l].size());
+    row.wall_median_s = Median(seconds[l]);
+    row.wall_min_s = *std::min_element(seconds[l].begin(), seconds[l].end());
+    row.wall_max_s = *std::max_element(seconds[l].begin(), seconds[l].end());
+    row.cpu_median_s = kNaN;  // the level's share is not measured
+    row.peak_mb = kNaN;
+    row.value_error =
+        LevelError(r, l, test, test_views, test_rows, &row.success);
+    row.param_error = kNaN;
+    row.size = static_cast<double>(level.texels.size());
+    row.is_default = l == 0;
+    rows->push_back(row);
+  }
+}
+
 std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
   VirtualGonioOptions gonio;
   gonio.texels = o.quick ? 2 : 8;
@@ -330,10 +448,19 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
     (i % lights % 4 == 3 ? test : train).rows.push_back(all.rows[i]);
   }
   const ViewIndex test_views(test);
-  std::map<std::pair<int, int>, std::vector<size_t>> test_rows;
+  TexelRows test_rows;
   for (size_t i = 0; i < test.rows.size(); ++i) {
     test_rows[{test.rows[i].s, test.rows[i].t}].push_back(i);
   }
+  // Level 0's error: the mean over texels of the relative RMS at their
+  // held-out rows.
+  auto run = [&](const LafortuneMipOptions& fit) {
+    const LafortuneMipResult r = FitLafortuneMip(train, fit);
+    Outcome out;
+    out.value_error =
+        LevelError(r, 0, test, test_views, test_rows, &out.success);
+    return out;
+  };
   struct Knobs {
     int lobes;
     bool lut;
@@ -367,27 +494,7 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
     fit.fit.function_tolerance = std::pow(10.0, -k.ftol_exp);
     fit.threads = k.threads;
     fit.mip = k.mip;
-    BenchRow row = Measure(o, [&]() {
-      const LafortuneMipResult r = FitLafortuneMip(train, fit);
-      Outcome out;
-      out.success = true;
-      double sum = 0.0;
-      int n = 0;
-      const LafortuneLevel& level = r.levels[0];
-      for (int y = 0; y < level.height; ++y) {
-        for (int x = 0; x < level.width; ++x) {
-          const TexelFit& t = level.texels[y * level.width + x];
-          out.success = out.success && t.usable;
-          double rms = 0.0, rel = 0.0;
-          LafortuneErrors(t.model, test, test_views, test_rows[{x, y}], &rms,
-                          &rel);
-          sum += rel;
-          ++n;
-        }
-      }
-      out.value_error = n ? sum / n : kNaN;
-      return out;
-    });
+    BenchRow row = Measure(o, [&]() { return run(fit); });
     row.model = "lafortune";
     row.config = config.str();
     row.group = std::string("lut=") + (k.lut ? "on" : "off");
@@ -396,6 +503,16 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
         k.lobes == 2 && k.lut && k.ftol_exp == 5 && k.threads == 0 && !k.mip;
     rows->push_back(row);
   }
+  SweepLinearSolvers(
+      o, "lafortune",
+      [&](LinearSolver solver) {
+        LafortuneMipOptions fit;
+        fit.mip = false;
+        fit.fit.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
+  BenchMipLevels(o, train, test, test_views, test_rows, rows);
   return RunPeer(o, train, test,
                  o.quick ? std::vector<int>{2} : std::vector<int>{1, 2}, rows);
 }
@@ -411,6 +528,16 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const std::vector<TableRow>& held_out = problem.held_out;
   std::vector<double> truth_values(SlabParams::kSize);
   ToArray(truth, truth_values.data());
+  auto run = [&](const SlabFitOptions& fit) {
+    const SlabFitResult r = FitSlab({table}, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    std::vector<double> values(SlabParams::kSize);
+    ToArray(r.params, values.data());
+    out.param_error = LargestRelativeError(values, truth_values);
+    return out;
+  };
   for (int starts :
        o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4}) {
     for (bool per_channel : {false, true}) {
@@ -421,17 +548,7 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
       SlabFitOptions fit;
       fit.solve_starts = starts;
       fit.per_channel_tau = per_channel;
-      BenchRow row = Measure(o, [&]() {
-        const SlabFitResult r = FitSlab({table}, fit);
-        Outcome out;
-        out.success = r.report.usable && r.report.converged;
-        out.value_error =
-            HeldOutError(r.params, truth, held_out, table.quantity);
-        std::vector<double> values(SlabParams::kSize);
-        ToArray(r.params, values.data());
-        out.param_error = LargestRelativeError(values, truth_values);
-        return out;
-      });
+      BenchRow row = Measure(o, [&]() { return run(fit); });
       row.model = "slab";
       row.config = config;
       row.group =
@@ -442,6 +559,14 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
       rows->push_back(row);
     }
   }
+  SweepLinearSolvers(
+      o, "slab",
+      [&](LinearSolver solver) {
+        SlabFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
 }
 
 // Holes: the thickness of a random mask's opaque texels from ray-traced
@@ -674,8 +799,10 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     if (sized) {
       ScatterChart size;
       size.title = model + ": error against model size";
-      size.x_label =
-          model == "cloth" ? "tangent samples T per thread" : "lobes K";
+      size.x_label = model == "cloth"           ? "tangent samples T per thread"
+                     : model == "lafortune_mip" ? "texels of the mip level"
+                                                : "lobes K";
+      size.log_x = model == "lafortune_mip";
       size.y_label = "held-out relative RMS error";
       std::map<std::string, size_t> size_series;
       for (const BenchRow& r : mine) {
@@ -702,6 +829,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
           p.x = r.size;
           p.y = r.value_error;
           p.highlight = r.size == pick;
+          p.label = r.label;
           size.series[index].points.push_back(p);
         }
         md << "\n`--tolerance` just above the best error of " << group << " (+"

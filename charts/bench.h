@@ -50,6 +50,7 @@ struct BenchRow {
   double size = 0.0;          // model size (lobes; NaN where not swept)
   bool success = false;       // the fit reported usable and converged
   std::string group;          // series of the charts (e.g. "lut=on")
+  std::string label;          // beside the point in the size chart
 };
 
 // peer_note (may be null): what became of the peer ("" when it ran).
