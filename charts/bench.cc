@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "charts/chart.h"
+#include "charts/holes_problem.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
@@ -579,25 +580,12 @@ void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const HoleTexture texture = AnalyzeMask(mask, true);
   HolesParams truth;
   truth.thickness_texels = 0.8;
-  auto table_at = [&](const std::vector<double>& phis) {
-    MeasurementTable table;
-    table.quantity = Quantity::kTransmittance;
-    table.channels = 1;
-    for (double theta : {0.0, 15.0, 30.0, 45.0, 55.0}) {
-      for (double phi : phis) {
-        TableRow row;
-        row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
-        const HoleRatios ratios =
-            HoleTruthTile(mask, ViewOffset(truth.thickness_texels, row.wo),
-                          o.quick ? 16 : 32);
-        row.value = glm::dvec3(HolesTransmittance(truth, ratios).x);
-        table.rows.push_back(row);
-      }
-    }
-    return table;
-  };
-  const MeasurementTable table = table_at({0.0, 90.0, 180.0, 270.0});
-  const MeasurementTable held_out = table_at({45.0, 135.0, 225.0, 315.0});
+  const std::vector<double> thetas = {0.0, 15.0, 30.0, 45.0, 55.0};
+  const int samples = o.quick ? 16 : 32;
+  const MeasurementTable table =
+      HolesTruthTable(mask, truth, thetas, {0.0, 90.0, 180.0, 270.0}, samples);
+  const MeasurementTable held_out = HolesTruthTable(
+      mask, truth, thetas, {45.0, 135.0, 225.0, 315.0}, samples);
   for (HoleMethod method : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
     for (int level : {0, -1}) {
       const std::string config = std::string("method=") +
@@ -613,20 +601,8 @@ void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
         out.success = r.report.usable && r.report.converged;
         // Held out: the fitted thickness's transmittance (the same method)
         // against the ground truth at the other azimuths.
-        const LevelTexels texels = GatherLevel(
-            texture, level < 0 ? texture.counts.levels() - 1 : level);
-        double se = 0.0, ss = 0.0;
-        for (const TableRow& row : held_out.rows) {
-          const double m =
-              HolesTransmittance(
-                  r.params,
-                  TileRatios(texels, method,
-                             ViewOffset(r.params.thickness_texels, row.wo)))
-                  .x;
-          se += (m - row.value.x) * (m - row.value.x);
-          ss += row.value.x * row.value.x;
-        }
-        out.value_error = ss > 0.0 ? std::sqrt(se / ss) : kNaN;
+        out.value_error =
+            HolesHeldOutError(r.params, texture, method, level, held_out);
         out.param_error =
             std::abs(r.params.thickness_texels - truth.thickness_texels) /
             truth.thickness_texels;
