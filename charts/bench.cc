@@ -27,6 +27,7 @@
 #include "fitting/thread_fit.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
+#include "io/params_json.h"
 #include "io/table.h"
 #include "io/text_util.h"
 #include "models/presets.h"
@@ -164,9 +165,139 @@ Problem MakeProblem(const ModelParams& truth, int rows, bool full_sphere,
   return p;
 }
 
+// Runs a peer script o.repeats times (`arguments` after the script, each
+// quoted); *seconds receives the times it reports (the fits only) and
+// *result its last JSON object. Returns why it did not run, or "".
+std::string RunPeerScript(const BenchOptions& o, const std::string& script,
+                          const std::vector<std::string>& arguments,
+                          const std::string& json_out,
+                          std::vector<double>* seconds,
+                          nlohmann::json* result) {
+  std::string command = "'" + o.python + "' '" + script + "'";
+  for (const std::string& a : arguments) command += " '" + a + "'";
+  command += " > '" + json_out + "' 2>/dev/null";
+  for (int r = 0; r < std::max(1, o.repeats); ++r) {
+    if (std::system(command.c_str()) != 0) {
+      return "SciPy peer skipped: '" + o.python + " " + script +
+             "' failed (is python3-scipy installed?)";
+    }
+    *result = nlohmann::json::parse(ReadFileToString(json_out));
+    seconds->push_back(result->at("seconds").get<double>());
+  }
+  std::remove(json_out.c_str());
+  return "";
+}
+
+// A row of the peer: its time is the script's own (the fits, not Python's
+// start or the CSV parsing), CPU = wall (one thread).
+BenchRow PeerRow(const std::string& model, const std::string& config,
+                 const std::vector<double>& seconds,
+                 const nlohmann::json& result) {
+  BenchRow row;
+  row.model = model;
+  row.config = config;
+  row.group = "SciPy peer";
+  row.repeats = static_cast<int>(seconds.size());
+  row.wall_median_s = row.cpu_median_s = Median(seconds);
+  row.wall_min_s = *std::min_element(seconds.begin(), seconds.end());
+  row.wall_max_s = *std::max_element(seconds.begin(), seconds.end());
+  row.peak_mb = kNaN;  // another process
+  row.value_error = result.at("value_error").get<double>();
+  row.param_error = result.value("param_error", kNaN);
+  row.size = kNaN;
+  row.success = result.value("success", true);
+  return row;
+}
+
+std::string ScratchDir(const BenchOptions& o) {
+  return o.scratch_dir.empty() ? "/tmp" : o.scratch_dir;
+}
+
+// The Lafortune peer (benchmarks/peer/scipy_lafortune.py) on the same
+// train/test split: one row per lobe count.
+std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
+                    const MeasurementTable& test, const std::vector<int>& lobes,
+                    std::vector<BenchRow>* rows) {
+  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
+  const std::string dir = ScratchDir(o);
+  const std::string train_csv = dir + "/peer_train.csv";
+  const std::string test_csv = dir + "/peer_test.csv";
+  WriteTable(train, train_csv);
+  WriteTable(test, test_csv);
+  std::string note;
+  for (int k : lobes) {
+    Say(o, "lafortune: SciPy peer, lobes=" + std::to_string(k));
+    std::vector<double> seconds;
+    nlohmann::json result;
+    note = RunPeerScript(o, o.peer_script,
+                         {train_csv, test_csv, std::to_string(k)},
+                         dir + "/peer_out.json", &seconds, &result);
+    if (!note.empty()) break;
+    rows->push_back(
+        PeerRow("lafortune",
+                "scipy least_squares lobes=" + std::to_string(k) + " lut=off",
+                seconds, result));
+  }
+  std::remove(train_csv.c_str());
+  std::remove(test_csv.c_str());
+  return note;
+}
+
+// The peer of the thread, cloth and slab fits
+// (benchmarks/peer/scipy_models.py, beside o.peer_script): the problem's
+// table, its held-out directions with the true values, and the parameter
+// vector as `report` (a clothfit fit of the problem) lists it - names,
+// bounds, free entries - with the start and the truth as parameter files.
+std::string RunModelPeer(const BenchOptions& o, const std::string& model,
+                         const Problem& problem, const ModelParams& truth,
+                         const ModelParams& start, const FitReport& report,
+                         std::vector<BenchRow>* rows) {
+  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
+  Say(o, model + ": SciPy peer");
+  const std::string dir = ScratchDir(o);
+  const std::string train_csv = dir + "/peer_" + model + "_train.csv";
+  const std::string held_csv = dir + "/peer_" + model + "_held_out.csv";
+  const std::string spec_json = dir + "/peer_" + model + "_spec.json";
+  WriteTable(problem.table, train_csv);
+  MeasurementTable held = problem.table;
+  held.has_sigma = false;
+  held.rows = problem.held_out;
+  for (TableRow& row : held.rows) {
+    row.value = Evaluate(truth, row.wi, row.wo, held.quantity);
+  }
+  WriteTable(held, held_csv);
+  nlohmann::json spec;
+  spec["params"] = nlohmann::json::parse(FormatParamFile({start, ""}));
+  spec["truth"] = nlohmann::json::parse(FormatParamFile({truth, ""}));
+  for (const ParameterReport& p : report.parameters) {
+    spec["names"].push_back(p.name);
+    spec["lower"].push_back(p.lower);
+    spec["upper"].push_back(p.upper);
+    spec["free"].push_back(p.free);
+  }
+  WriteFileAtomically(spec_json, spec.dump());
+  const size_t slash = o.peer_script.rfind('/');
+  const std::string script =
+      (slash == std::string::npos ? std::string(".")
+                                  : o.peer_script.substr(0, slash)) +
+      "/scipy_models.py";
+  std::vector<double> seconds;
+  nlohmann::json result;
+  const std::string note =
+      RunPeerScript(o, script, {"fit", model, spec_json, train_csv, held_csv},
+                    dir + "/peer_" + model + "_out.json", &seconds, &result);
+  if (note.empty()) {
+    rows->push_back(PeerRow(model, "scipy least_squares", seconds, result));
+  }
+  for (const std::string& f : {train_csv, held_csv, spec_json}) {
+    std::remove(f.c_str());
+  }
+  return note;
+}
+
 // Thread: the satin's warp thread, 2 % noise; knobs: solver starts and the
 // iteration cap.
-void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams satin;
   GetPreset("polyester_satin_charmeuse", &satin);
   const ThreadParams truth = satin.threads[0].params;
@@ -212,11 +343,13 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
         return run(fit);
       },
       rows);
+  return RunModelPeer(o, "thread", problem, truth, ThreadParams(),
+                      FitThread(table, ThreadFitOptions()).report, rows);
 }
 
 // Cloth: the satin from the generic start, 2 % noise; knobs: the start
 // search and the number of solver starts.
-void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams truth;
   GetPreset("polyester_satin_charmeuse", &truth);
   const Problem problem =
@@ -295,6 +428,10 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     row.size = t;
     rows->push_back(row);
   }
+  // The cloth peer takes seconds even on the quick bench's table.
+  if (o.quick) return "";
+  return RunModelPeer(o, "cloth", problem, truth, start,
+                      FitCloth(table, start, ClothFitOptions()).report, rows);
 }
 
 // Lafortune: virtual-gonio plain weave; every 4th light held out. Knobs:
@@ -302,57 +439,6 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
 // The SciPy peer on the same train/test split: one row per lobe count, its
 // time the script's own (the fits, not Python's start or the CSV parsing),
 // CPU = wall (one thread). Returns why it did not run, or "".
-std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
-                    const MeasurementTable& test, const std::vector<int>& lobes,
-                    std::vector<BenchRow>* rows) {
-  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
-  const std::string dir = o.scratch_dir.empty() ? "/tmp" : o.scratch_dir;
-  const std::string train_csv = dir + "/peer_train.csv";
-  const std::string test_csv = dir + "/peer_test.csv";
-  const std::string json_out = dir + "/peer_out.json";
-  WriteTable(train, train_csv);
-  WriteTable(test, test_csv);
-  std::string note;
-  for (int k : lobes) {
-    Say(o, "lafortune: SciPy peer, lobes=" + std::to_string(k));
-    std::vector<double> seconds;
-    nlohmann::json result;
-    for (int r = 0; r < std::max(1, o.repeats) && note.empty(); ++r) {
-      const std::string command = "'" + o.python + "' '" + o.peer_script +
-                                  "' '" + train_csv + "' '" + test_csv + "' " +
-                                  std::to_string(k) + " > '" + json_out +
-                                  "' 2>/dev/null";
-      const int status = std::system(command.c_str());
-      if (status != 0) {
-        note = "SciPy peer skipped: '" + o.python + " " + o.peer_script +
-               "' failed (is python3-scipy installed?)";
-        break;
-      }
-      result = nlohmann::json::parse(ReadFileToString(json_out));
-      seconds.push_back(result.at("seconds").get<double>());
-    }
-    if (!note.empty()) break;
-    BenchRow row;
-    row.model = "lafortune";
-    row.config = "scipy least_squares lobes=" + std::to_string(k) + " lut=off";
-    row.group = "SciPy peer";
-    row.repeats = static_cast<int>(seconds.size());
-    row.wall_median_s = row.cpu_median_s = Median(seconds);
-    row.wall_min_s = *std::min_element(seconds.begin(), seconds.end());
-    row.wall_max_s = *std::max_element(seconds.begin(), seconds.end());
-    row.peak_mb = kNaN;  // another process
-    row.value_error = result.at("value_error").get<double>();
-    row.param_error = kNaN;
-    row.size = kNaN;
-    row.success = true;
-    rows->push_back(row);
-  }
-  std::remove(train_csv.c_str());
-  std::remove(test_csv.c_str());
-  std::remove(json_out.c_str());
-  return note;
-}
-
 // The held-out rows of each level-0 texel (s, t) of a gonio table.
 using TexelRows = std::map<std::pair<int, int>, std::vector<size_t>>;
 
@@ -521,7 +607,7 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
 // Slab: tau 0.05, albedo (0.4, 0.3, 0.2) (inside the single-scattering
 // regime, docs/slab.md), reflection and transmission rows, 2 % noise;
 // knobs: solver starts and one tau per channel.
-void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const SlabParams truth = BenchSlabTruth();
   const Problem problem =
       MakeProblem(truth, o.quick ? 300 : 3000, true, o.seed, o.seed + 3000);
@@ -568,6 +654,8 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
         return run(fit);
       },
       rows);
+  return RunModelPeer(o, "slab", problem, truth, SlabParams(),
+                      FitSlab({table}, SlabFitOptions()).report, rows);
 }
 
 // Holes: the thickness of a random mask's opaque texels from ray-traced
@@ -659,12 +747,16 @@ double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
 std::vector<BenchRow> RunBench(const BenchOptions& options,
                                std::string* peer_note) {
   std::vector<BenchRow> rows;
-  std::string note = "the SciPy peer runs on the Lafortune problems only";
-  if (Wanted(options, "thread")) BenchThread(options, &rows);
-  if (Wanted(options, "cloth")) BenchCloth(options, &rows);
-  if (Wanted(options, "slab")) BenchSlab(options, &rows);
+  // The first reason a peer did not run (the same for all, as a rule).
+  std::string note;
+  auto keep = [&](const std::string& n) {
+    if (note.empty()) note = n;
+  };
+  if (Wanted(options, "thread")) keep(BenchThread(options, &rows));
+  if (Wanted(options, "cloth")) keep(BenchCloth(options, &rows));
+  if (Wanted(options, "slab")) keep(BenchSlab(options, &rows));
   if (Wanted(options, "holes")) BenchHoles(options, &rows);
-  if (Wanted(options, "lafortune")) note = BenchLafortune(options, &rows);
+  if (Wanted(options, "lafortune")) keep(BenchLafortune(options, &rows));
   if (peer_note) *peer_note = note;
   return rows;
 }
@@ -749,27 +841,34 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
 
     md << "\n## " << model << "\n\n![speed against accuracy](" << model
        << "_speed_accuracy.png)\n";
-    // The peer beside clothfit's same problem (lobes K, no lookup table).
+    // The peer beside clothfit's same problem: the default configuration
+    // (Lafortune: the same lobe count K without lookup table).
     for (const BenchRow& peer : mine) {
       if (peer.group != "SciPy peer") continue;
+      const size_t at = peer.config.find("lobes=");
       const std::string lobes =
-          peer.config.substr(peer.config.find("lobes="), 7);
+          at == std::string::npos ? "" : peer.config.substr(at, 7);
       for (const BenchRow& r : mine) {
-        if (r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all", 0) !=
-            0) {
-          continue;
-        }
-        md << "\nSciPy peer, " << lobes
-           << " without lookup table: " << Short(peer.cpu_median_s)
-           << " s CPU against clothfit's " << Short(r.cpu_median_s) << " s ("
+        const bool same =
+            lobes.empty()
+                ? r.is_default
+                : r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all",
+                                 0) == 0;
+        if (!same) continue;
+        md << "\nSciPy peer" << (lobes.empty() ? "" : ", " + lobes)
+           << (lobes.empty() ? " against clothfit's default"
+                             : " without lookup table")
+           << ": " << Short(peer.cpu_median_s) << " s CPU against clothfit's "
+           << Short(r.cpu_median_s) << " s ("
            << Short(peer.cpu_median_s / r.cpu_median_s)
            << " x); held-out error " << Short(peer.value_error) << " against "
-           << Short(r.value_error) << ".\n";
+           << Short(r.value_error) << " (difference "
+           << Short(peer.value_error - r.value_error) << ").\n";
       }
     }
-    if (model == "lafortune" && !peer_note.empty()) {
-      md << "\n" << peer_note << ".\n";
-    }
+    const bool has_peer = model == "thread" || model == "cloth" ||
+                          model == "slab" || model == "lafortune";
+    if (has_peer && !peer_note.empty()) md << "\n" << peer_note << ".\n";
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
     if (sized) {
