@@ -188,6 +188,13 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
     for (const Fitter& fitter : fitters) {
       // The robust loss only matters for outliers.
       if (fitter.loss != Loss::kNone && knob.name != "outliers") continue;
+      // --models: "holes" stands for "holes+wall" and "holes+cauchy" too.
+      const std::string base = fitter.name.substr(0, fitter.name.find('+'));
+      if (!options.models.empty() &&
+          std::find(options.models.begin(), options.models.end(), base) ==
+              options.models.end()) {
+        continue;
+      }
       for (double level : knob.levels) {
         if (options.progress) {
           options.progress("stability: " + fitter.name + " " + knob.name + " " +
