@@ -165,24 +165,33 @@ Problem MakeProblem(const ModelParams& truth, int rows, bool full_sphere,
   return p;
 }
 
-// Runs a peer script o.repeats times (`arguments` after the script, each
-// quoted); *seconds receives the times it reports (the fits only) and
-// *result its last JSON object. Returns why it did not run, or "".
+// Runs a peer script for o.repeats timed fits (`arguments` after the
+// script, each quoted): o.repeats runs, or with `repeats_inside` one run
+// that is given the count as a last argument and reports each fit's time
+// in "seconds_each" (one Python start). *seconds receives the times (the
+// fits only) and *result the last JSON object. Returns why it did not run,
+// or "".
 std::string RunPeerScript(const BenchOptions& o, const std::string& script,
-                          const std::vector<std::string>& arguments,
-                          const std::string& json_out,
+                          std::vector<std::string> arguments,
+                          bool repeats_inside, const std::string& json_out,
                           std::vector<double>* seconds,
                           nlohmann::json* result) {
+  const int repeats = std::max(1, o.repeats);
+  if (repeats_inside) arguments.push_back(std::to_string(repeats));
   std::string command = "'" + o.python + "' '" + script + "'";
   for (const std::string& a : arguments) command += " '" + a + "'";
   command += " > '" + json_out + "' 2>/dev/null";
-  for (int r = 0; r < std::max(1, o.repeats); ++r) {
+  for (int r = 0; r < (repeats_inside ? 1 : repeats); ++r) {
     if (std::system(command.c_str()) != 0) {
       return "SciPy peer skipped: '" + o.python + " " + script +
              "' failed (is python3-scipy installed?)";
     }
     *result = nlohmann::json::parse(ReadFileToString(json_out));
-    seconds->push_back(result->at("seconds").get<double>());
+    if (repeats_inside) {
+      *seconds = result->at("seconds_each").get<std::vector<double>>();
+    } else {
+      seconds->push_back(result->at("seconds").get<double>());
+    }
   }
   std::remove(json_out.c_str());
   return "";
@@ -230,7 +239,7 @@ std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
     std::vector<double> seconds;
     nlohmann::json result;
     note = RunPeerScript(o, o.peer_script,
-                         {train_csv, test_csv, std::to_string(k)},
+                         {train_csv, test_csv, std::to_string(k)}, false,
                          dir + "/peer_out.json", &seconds, &result);
     if (!note.empty()) break;
     rows->push_back(
@@ -283,9 +292,9 @@ std::string RunModelPeer(const BenchOptions& o, const std::string& model,
       "/scipy_models.py";
   std::vector<double> seconds;
   nlohmann::json result;
-  const std::string note =
-      RunPeerScript(o, script, {"fit", model, spec_json, train_csv, held_csv},
-                    dir + "/peer_" + model + "_out.json", &seconds, &result);
+  const std::string note = RunPeerScript(
+      o, script, {"fit", model, spec_json, train_csv, held_csv}, true,
+      dir + "/peer_" + model + "_out.json", &seconds, &result);
   if (note.empty()) {
     rows->push_back(PeerRow(model, "scipy least_squares", seconds, result));
   }

@@ -129,10 +129,11 @@ double HolesRun(const std::string& knob, double level, bool wall, Loss loss,
   }
   fit.solver.loss = loss;
   fit.fit_wall_color = wall;
-  HolesParams start;  // thickness x factor from the truth
-  start.thickness_texels =
-      truth.thickness_texels * (knob == "start_distance" ? level : 1.0);
-  fit.init = start;
+  if (knob == "start_distance") {  // thickness x factor from the truth
+    HolesParams start;
+    start.thickness_texels = truth.thickness_texels * level;
+    fit.init = start;
+  }  // else the fit's own start (HolesParams(), and its grid), as a user's
   const HolesFitResult r = FitHoles(table, texture, fit);
   *ok = r.report.usable && r.report.converged;
   const double e =

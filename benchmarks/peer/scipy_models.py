@@ -6,7 +6,7 @@ least_squares (trust-region reflective, bounds, finite-difference
 Jacobian), from the same start, with the same bounds, free parameters and
 sigma-normalised residuals.
 
-    scipy_models.py fit MODEL SPEC.json TRAIN.csv HELD.csv
+    scipy_models.py fit MODEL SPEC.json TRAIN.csv HELD.csv [REPEATS]
     scipy_models.py check MODEL PARAMS.json TABLE.csv
 
 MODEL: thread, cloth or slab. SPEC.json (written by the bench): "params"
@@ -15,9 +15,10 @@ MODEL: thread, cloth or slab. SPEC.json (written by the bench): "params"
 "free" (the parameter vector as clothfit's fit report lists it; the start
 and true values are read from the files by these names). TRAIN.csv: the table to
 fit; HELD.csv: held-out directions with the true model's values. `fit`
-prints one JSON object: seconds (the solve only), value_error (relative
-RMS at HELD), param_error (largest relative error of a free parameter),
-nfev, success. `check` prints the largest relative difference between the
+solves REPEATS times (default 1; one Python start for all) and prints one
+JSON object: seconds_each (each solve's time, the solve only), seconds
+(their median), value_error (relative RMS at HELD), param_error (largest
+relative error of a free parameter), nfev, success. `check` prints the largest relative difference between the
 table's values and this model at PARAMS (a test compares it with
 clothfit's). Exits 3 when SciPy/NumPy are missing.
 """
@@ -248,7 +249,7 @@ def with_values(params, names, x):
     return p
 
 
-def fit(model_name, spec_path, train_path, held_path):
+def fit(model_name, spec_path, train_path, held_path, repeats="1"):
     spec = json.load(open(spec_path))
     model = MODELS[model_name]
     wi, wo, y, sigma = read_table(train_path)
@@ -267,10 +268,12 @@ def fit(model_name, spec_path, train_path, held_path):
         m = model(with_values(spec["params"], names, full(xf)), wi, wo)
         return ((m - y) / sigma).ravel()
 
-    start = time.perf_counter()
-    result = least_squares(residuals, x0[free], bounds=(lo[free], hi[free]),
-                           method="trf")
-    seconds = time.perf_counter() - start
+    seconds = []
+    for _ in range(max(1, int(repeats))):
+        start = time.perf_counter()
+        result = least_squares(residuals, x0[free],
+                               bounds=(lo[free], hi[free]), method="trf")
+        seconds.append(time.perf_counter() - start)
     x = full(result.x)
     m = model(with_values(spec["params"], names, x), hwi, hwo)
     error = math.sqrt(np.sum((m - truth_values) ** 2) /
@@ -278,7 +281,9 @@ def fit(model_name, spec_path, train_path, held_path):
     truth = np.array([get_named(spec["truth"], n) for n in names])
     rel = [abs(x[i] - truth[i]) / abs(truth[i])
            for i in range(len(x)) if free[i] and truth[i] != 0.0]
-    print(json.dumps({"seconds": seconds, "value_error": error,
+    print(json.dumps({"seconds_each": seconds,
+                      "seconds": float(np.median(seconds)),
+                      "value_error": error,
                       "param_error": max(rel) if rel else 0.0,
                       "nfev": int(result.nfev),
                       "success": bool(result.success)}))
@@ -295,7 +300,7 @@ def check(model_name, params_path, table_path):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 6 and sys.argv[1] == "fit":
+    if len(sys.argv) in (6, 7) and sys.argv[1] == "fit":
         fit(*sys.argv[2:])
     elif len(sys.argv) == 5 and sys.argv[1] == "check":
         check(*sys.argv[2:])
