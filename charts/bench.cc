@@ -352,6 +352,8 @@ std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
         return run(fit);
       },
       rows);
+  // The quick bench keeps it to the slab's peer (the cheapest).
+  if (o.quick) return "";
   return RunModelPeer(o, "thread", problem, truth, ThreadParams(),
                       FitThread(table, ThreadFitOptions()).report, rows);
 }
