@@ -183,6 +183,7 @@ std::string RunPeerScript(const BenchOptions& o, const std::string& script,
   command += " > '" + json_out + "' 2>/dev/null";
   for (int r = 0; r < (repeats_inside ? 1 : repeats); ++r) {
     if (std::system(command.c_str()) != 0) {
+      std::remove(json_out.c_str());
       return "SciPy peer skipped: '" + o.python + " " + script +
              "' failed (is python3-scipy installed?)";
     }
