@@ -20,23 +20,26 @@ int RunBench(int argc, char** argv) {
       "clothfit bench [--quick] [--stability] [--repeats N] [--models LIST] "
       "--out DIR",
       "Sweeps the knobs that trade speed for accuracy (solver starts, "
-      "iteration caps, lobes, lookup table,\ntolerance, threads, mip levels) "
-      "for each fitter on synthetic data with truth held out from the fit,\n"
-      "and writes DIR/bench.csv (one row per configuration: median wall "
-      "time with min/max, CPU time,\npeak memory, held-out error, parameter "
-      "error), DIR/<model>_speed_accuracy.png (Pareto front,\ndefault "
-      "ringed), DIR/<model>_size.png and DIR/summary.md. docs/bench.md "
-      "explains the numbers.");
+      "iteration caps, lobes, lookup table,\ntolerance, threads, mip levels, "
+      "linear solver) for each fitter on synthetic data with truth held out\n"
+      "from the fit, beside SciPy least_squares peers of the same problems, "
+      "and writes DIR/bench.csv (one row per\nconfiguration: median wall "
+      "time with min/max, CPU time, peak memory, held-out error, parameter "
+      "error),\nDIR/<model>_speed_accuracy.png (Pareto front, default "
+      "ringed), DIR/<model>_size.png (lobes, tangent samples,\nmip levels: "
+      "lafortune_mip_size.png) and DIR/summary.md. docs/bench.md explains "
+      "the numbers.");
   args.Flag("quick", "small data and few knobs (seconds; the test suite's)");
   args.Flag("stability",
             "instead: success rate against noise, start distance, angular "
-            "coverage and outliers (DIR/stability.*)");
+            "coverage and outliers (DIR/stability.*; --models: thread, "
+            "cloth, slab, holes)");
   args.Option("repeats", "N", "timed runs per configuration", "3");
   args.Option("models", "LIST",
               "comma-separated: thread,cloth,lafortune,slab,holes", "all");
   args.Option("seed", "S", "random seed of the synthetic data", "1");
   args.Option("out", "DIR", "output folder (created if missing)");
-  args.Flag("no-peer", "leave out the SciPy least_squares peer");
+  args.Flag("no-peer", "leave out the SciPy least_squares peers");
   args.Option("python", "PATH",
               "Python 3 with SciPy for the peer (python3-scipy)",
               "/usr/bin/python3 if present, else python3");

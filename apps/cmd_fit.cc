@@ -21,6 +21,19 @@ void AddSolverOptions(CommandArgs* args) {
   args->Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
   args->Option("max-iterations", "N", "solver iteration cap", "200");
   args->Option("threads", "N", "threads for residual evaluation", "1");
+  args->Option("linear-solver", "S",
+               "linear solver of the solver's steps: " + LinearSolverNames(),
+               "dense_qr");
+}
+
+LinearSolver LinearSolverOption(const CommandArgs& args) {
+  LinearSolver solver = LinearSolver::kDenseQr;
+  const std::string name = args.Get("linear-solver");
+  if (!ParseLinearSolver(name, &solver)) {
+    args.Fail("option '--linear-solver': expected " + LinearSolverNames() +
+              ", got '" + name + "'");
+  }
+  return solver;
 }
 
 SolverOptions ReadSolverOptions(const CommandArgs& args) {
@@ -47,6 +60,7 @@ SolverOptions ReadSolverOptions(const CommandArgs& args) {
   if (threads < 1 || threads > 256)
     args.Fail("option '--threads': must be in [1, 256]");
   s.num_threads = static_cast<int>(threads);
+  s.linear_solver = LinearSolverOption(args);
   // A progress line on a terminal, overwritten in place.
   if (isatty(STDERR_FILENO)) {
     s.progress = [](const std::string& what) {

@@ -69,6 +69,10 @@ int RunFitLafortune(int argc, char** argv) {
   args.Option("max-iterations", "N", "Levenberg-Marquardt iterations per pass",
               "50");
   args.Option("threads", "N", "texel fits in parallel (0: all cores)", "0");
+  args.Option(
+      "linear-solver", "S",
+      "linear solver of the Levenberg-Marquardt steps: " + LinearSolverNames(),
+      "dense_normal_cholesky");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out_path = args.Required("out");
@@ -101,6 +105,7 @@ int RunFitLafortune(int argc, char** argv) {
   options.fit.max_alternations = static_cast<int>(alternations);
   options.fit.max_iterations = static_cast<int>(iterations);
   options.threads = static_cast<int>(threads);
+  options.fit.linear_solver = LinearSolverOption(args);
   options.mip = args.Has("mip");
   if (args.Has("tolerance")) {
     options.tolerance = args.GetDouble("tolerance");

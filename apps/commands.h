@@ -53,6 +53,9 @@ std::string ModelArgument(int argc, char** argv, int first = 2);
 // a progress line on a terminal).
 void AddSolverOptions(CommandArgs* args);
 SolverOptions ReadSolverOptions(const CommandArgs& args);
+// --linear-solver (fitting/linear_solver.h): an unknown name fails with
+// the option's name and the known ones.
+LinearSolver LinearSolverOption(const CommandArgs& args);
 
 // Reads the table at `path`, dropping invalid rows (with a warning naming
 // the first) when the command has --skip-invalid and it is given.

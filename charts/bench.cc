@@ -14,17 +14,20 @@
 #include <sstream>
 
 #include "charts/chart.h"
+#include "charts/holes_problem.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "fitting/cloth_fit.h"
 #include "fitting/holes_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/linear_solver.h"
 #include "fitting/model_selection.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
+#include "io/params_json.h"
 #include "io/table.h"
 #include "io/text_util.h"
 #include "models/presets.h"
@@ -119,6 +122,27 @@ void Say(const BenchOptions& o, const std::string& text) {
   if (o.progress) o.progress(text);
 }
 
+// One row per linear solver (fitting/linear_solver.h; the quick bench: the
+// two Eigen ones), the model's other knobs at their defaults; `run` fits
+// with the given solver.
+void SweepLinearSolvers(const BenchOptions& o, const std::string& model,
+                        const std::function<Outcome(LinearSolver)>& run,
+                        std::vector<BenchRow>* rows) {
+  const std::vector<LinearSolver> solvers =
+      o.quick ? std::vector<LinearSolver>{LinearSolver::kDenseQr,
+                                          LinearSolver::kDenseNormalCholesky}
+              : AllLinearSolvers();
+  for (LinearSolver s : solvers) {
+    const std::string config = "linear_solver=" + LinearSolverName(s);
+    Say(o, model + ": " + config);
+    BenchRow row = Measure(o, [&]() { return run(s); });
+    row.model = model;
+    row.config = config;
+    row.group = "linear solver";
+    rows->push_back(row);
+  }
+}
+
 // A synthetic problem: the truth's table with 2 % noise, and held-out
 // directions drawn from a second stream (wo over the whole sphere for the
 // thread and slab models).
@@ -141,9 +165,149 @@ Problem MakeProblem(const ModelParams& truth, int rows, bool full_sphere,
   return p;
 }
 
+// Runs a peer script for o.repeats timed fits (`arguments` after the
+// script, each quoted): o.repeats runs, or with `repeats_inside` one run
+// that is given the count as a last argument and reports each fit's time
+// in "seconds_each" (one Python start). *seconds receives the times (the
+// fits only) and *result the last JSON object. Returns why it did not run,
+// or "".
+std::string RunPeerScript(const BenchOptions& o, const std::string& script,
+                          std::vector<std::string> arguments,
+                          bool repeats_inside, const std::string& json_out,
+                          std::vector<double>* seconds,
+                          nlohmann::json* result) {
+  const int repeats = std::max(1, o.repeats);
+  if (repeats_inside) arguments.push_back(std::to_string(repeats));
+  std::string command = "'" + o.python + "' '" + script + "'";
+  for (const std::string& a : arguments) command += " '" + a + "'";
+  command += " > '" + json_out + "' 2>/dev/null";
+  for (int r = 0; r < (repeats_inside ? 1 : repeats); ++r) {
+    if (std::system(command.c_str()) != 0) {
+      std::remove(json_out.c_str());
+      return "SciPy peer skipped: '" + o.python + " " + script +
+             "' failed (is python3-scipy installed?)";
+    }
+    *result = nlohmann::json::parse(ReadFileToString(json_out));
+    if (repeats_inside) {
+      *seconds = result->at("seconds_each").get<std::vector<double>>();
+    } else {
+      seconds->push_back(result->at("seconds").get<double>());
+    }
+  }
+  std::remove(json_out.c_str());
+  return "";
+}
+
+// A row of the peer: its time is the script's own (the fits, not Python's
+// start or the CSV parsing), CPU = wall (one thread).
+BenchRow PeerRow(const std::string& model, const std::string& config,
+                 const std::vector<double>& seconds,
+                 const nlohmann::json& result) {
+  BenchRow row;
+  row.model = model;
+  row.config = config;
+  row.group = "SciPy peer";
+  row.repeats = static_cast<int>(seconds.size());
+  row.wall_median_s = row.cpu_median_s = Median(seconds);
+  row.wall_min_s = *std::min_element(seconds.begin(), seconds.end());
+  row.wall_max_s = *std::max_element(seconds.begin(), seconds.end());
+  row.peak_mb = kNaN;  // another process
+  row.value_error = result.at("value_error").get<double>();
+  row.param_error = result.value("param_error", kNaN);
+  row.size = kNaN;
+  row.success = result.value("success", true);
+  return row;
+}
+
+std::string ScratchDir(const BenchOptions& o) {
+  return o.scratch_dir.empty() ? "/tmp" : o.scratch_dir;
+}
+
+// The Lafortune peer (benchmarks/peer/scipy_lafortune.py) on the same
+// train/test split: one row per lobe count.
+std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
+                    const MeasurementTable& test, const std::vector<int>& lobes,
+                    std::vector<BenchRow>* rows) {
+  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
+  const std::string dir = ScratchDir(o);
+  const std::string train_csv = dir + "/peer_train.csv";
+  const std::string test_csv = dir + "/peer_test.csv";
+  WriteTable(train, train_csv);
+  WriteTable(test, test_csv);
+  std::string note;
+  for (int k : lobes) {
+    Say(o, "lafortune: SciPy peer, lobes=" + std::to_string(k));
+    std::vector<double> seconds;
+    nlohmann::json result;
+    note = RunPeerScript(o, o.peer_script,
+                         {train_csv, test_csv, std::to_string(k)}, false,
+                         dir + "/peer_out.json", &seconds, &result);
+    if (!note.empty()) break;
+    rows->push_back(
+        PeerRow("lafortune",
+                "scipy least_squares lobes=" + std::to_string(k) + " lut=off",
+                seconds, result));
+  }
+  std::remove(train_csv.c_str());
+  std::remove(test_csv.c_str());
+  return note;
+}
+
+// The peer of the thread, cloth and slab fits
+// (benchmarks/peer/scipy_models.py, beside o.peer_script): the problem's
+// table, its held-out directions with the true values, and the parameter
+// vector as `report` (a clothfit fit of the problem) lists it - names,
+// bounds, free entries - with the start and the truth as parameter files.
+std::string RunModelPeer(const BenchOptions& o, const std::string& model,
+                         const Problem& problem, const ModelParams& truth,
+                         const ModelParams& start, const FitReport& report,
+                         std::vector<BenchRow>* rows) {
+  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
+  Say(o, model + ": SciPy peer");
+  const std::string dir = ScratchDir(o);
+  const std::string train_csv = dir + "/peer_" + model + "_train.csv";
+  const std::string held_csv = dir + "/peer_" + model + "_held_out.csv";
+  const std::string spec_json = dir + "/peer_" + model + "_spec.json";
+  WriteTable(problem.table, train_csv);
+  MeasurementTable held = problem.table;
+  held.has_sigma = false;
+  held.rows = problem.held_out;
+  for (TableRow& row : held.rows) {
+    row.value = Evaluate(truth, row.wi, row.wo, held.quantity);
+  }
+  WriteTable(held, held_csv);
+  nlohmann::json spec;
+  spec["params"] = nlohmann::json::parse(FormatParamFile({start, ""}));
+  spec["truth"] = nlohmann::json::parse(FormatParamFile({truth, ""}));
+  for (const ParameterReport& p : report.parameters) {
+    spec["names"].push_back(p.name);
+    spec["lower"].push_back(p.lower);
+    spec["upper"].push_back(p.upper);
+    spec["free"].push_back(p.free);
+  }
+  WriteFileAtomically(spec_json, spec.dump());
+  const size_t slash = o.peer_script.rfind('/');
+  const std::string script =
+      (slash == std::string::npos ? std::string(".")
+                                  : o.peer_script.substr(0, slash)) +
+      "/scipy_models.py";
+  std::vector<double> seconds;
+  nlohmann::json result;
+  const std::string note = RunPeerScript(
+      o, script, {"fit", model, spec_json, train_csv, held_csv}, true,
+      dir + "/peer_" + model + "_out.json", &seconds, &result);
+  if (note.empty()) {
+    rows->push_back(PeerRow(model, "scipy least_squares", seconds, result));
+  }
+  for (const std::string& f : {train_csv, held_csv, spec_json}) {
+    std::remove(f.c_str());
+  }
+  return note;
+}
+
 // Thread: the satin's warp thread, 2 % noise; knobs: solver starts and the
 // iteration cap.
-void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams satin;
   GetPreset("polyester_satin_charmeuse", &satin);
   const ThreadParams truth = satin.threads[0].params;
@@ -155,6 +319,15 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4};
   const std::vector<int> caps =
       o.quick ? std::vector<int>{200} : std::vector<int>{10, 50, 200};
+  auto run = [&](const ThreadFitOptions& fit) {
+    const ThreadFitResult r = FitThread(table, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    out.param_error =
+        LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
+    return out;
+  };
   for (int s : starts) {
     for (int cap : caps) {
       const std::string config = "starts=" + std::to_string(s) +
@@ -163,16 +336,7 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       ThreadFitOptions fit;
       fit.solve_starts = s;
       fit.solver.max_iterations = cap;
-      BenchRow row = Measure(o, [&]() {
-        const ThreadFitResult r = FitThread(table, fit);
-        Outcome out;
-        out.success = r.report.usable && r.report.converged;
-        out.value_error =
-            HeldOutError(r.params, truth, held_out, table.quantity);
-        out.param_error =
-            LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
-        return out;
-      });
+      BenchRow row = Measure(o, [&]() { return run(fit); });
       row.model = "thread";
       row.config = config;
       row.group = "starts=" + std::to_string(s);
@@ -181,11 +345,23 @@ void BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       rows->push_back(row);
     }
   }
+  SweepLinearSolvers(
+      o, "thread",
+      [&](LinearSolver solver) {
+        ThreadFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
+  // The quick bench keeps it to the slab's peer (the cheapest).
+  if (o.quick) return "";
+  return RunModelPeer(o, "thread", problem, truth, ThreadParams(),
+                      FitThread(table, ThreadFitOptions()).report, rows);
 }
 
 // Cloth: the satin from the generic start, 2 % noise; knobs: the start
 // search and the number of solver starts.
-void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
   ClothParams truth;
   GetPreset("polyester_satin_charmeuse", &truth);
   const Problem problem =
@@ -197,6 +373,16 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     bool multi_start;
     int starts;
   };
+  auto run = [&](const ClothFitOptions& fit) {
+    const ClothFitResult r = FitCloth(table, start, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    out.param_error =
+        LargestRelativeError(ClothParameterValues(r.params, truth),
+                             ClothParameterValues(truth, truth));
+    return out;
+  };
   std::vector<Knobs> knobs = {{false, 1}, {true, 1}, {true, 2}};
   if (!o.quick) knobs.push_back({true, 4});
   for (const Knobs& k : knobs) {
@@ -207,16 +393,7 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     ClothFitOptions fit;
     fit.multi_start = k.multi_start;
     fit.solve_starts = k.starts;
-    BenchRow row = Measure(o, [&]() {
-      const ClothFitResult r = FitCloth(table, start, fit);
-      Outcome out;
-      out.success = r.report.usable && r.report.converged;
-      out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
-      out.param_error =
-          LargestRelativeError(ClothParameterValues(r.params, truth),
-                               ClothParameterValues(truth, truth));
-      return out;
-    });
+    BenchRow row = Measure(o, [&]() { return run(fit); });
     row.model = "cloth";
     row.config = config;
     row.group = std::string("start search ") + (k.multi_start ? "on" : "off");
@@ -225,6 +402,14 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
                      k.starts == defaults.solve_starts;
     rows->push_back(row);
   }
+  SweepLinearSolvers(
+      o, "cloth",
+      [&](LinearSolver solver) {
+        ClothFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
   // Model size: each thread's tangent curve sampled at T points where it
   // has more offsets than that (as the --tolerance ladder does,
   // fitting/model_selection.h); the largest T is the weave as given.
@@ -255,6 +440,10 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     row.size = t;
     rows->push_back(row);
   }
+  // The cloth peer takes seconds even on the quick bench's table.
+  if (o.quick) return "";
+  return RunModelPeer(o, "cloth", problem, truth, start,
+                      FitCloth(table, start, ClothFitOptions()).report, rows);
 }
 
 // Lafortune: virtual-gonio plain weave; every 4th light held out. Knobs:
@@ -262,55 +451,83 @@ void BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
 // The SciPy peer on the same train/test split: one row per lobe count, its
 // time the script's own (the fits, not Python's start or the CSV parsing),
 // CPU = wall (one thread). Returns why it did not run, or "".
-std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
-                    const MeasurementTable& test, const std::vector<int>& lobes,
-                    std::vector<BenchRow>* rows) {
-  if (o.peer_script.empty()) return "the SciPy peer was not asked for";
-  const std::string dir = o.scratch_dir.empty() ? "/tmp" : o.scratch_dir;
-  const std::string train_csv = dir + "/peer_train.csv";
-  const std::string test_csv = dir + "/peer_test.csv";
-  const std::string json_out = dir + "/peer_out.json";
-  WriteTable(train, train_csv);
-  WriteTable(test, test_csv);
-  std::string note;
-  for (int k : lobes) {
-    Say(o, "lafortune: SciPy peer, lobes=" + std::to_string(k));
-    std::vector<double> seconds;
-    nlohmann::json result;
-    for (int r = 0; r < std::max(1, o.repeats) && note.empty(); ++r) {
-      const std::string command = "'" + o.python + "' '" + o.peer_script +
-                                  "' '" + train_csv + "' '" + test_csv + "' " +
-                                  std::to_string(k) + " > '" + json_out +
-                                  "' 2>/dev/null";
-      const int status = std::system(command.c_str());
-      if (status != 0) {
-        note = "SciPy peer skipped: '" + o.python + " " + o.peer_script +
-               "' failed (is python3-scipy installed?)";
-        break;
-      }
-      result = nlohmann::json::parse(ReadFileToString(json_out));
-      seconds.push_back(result.at("seconds").get<double>());
+// The held-out rows of each level-0 texel (s, t) of a gonio table.
+using TexelRows = std::map<std::pair<int, int>, std::vector<size_t>>;
+
+// The error of mip level `l` of a fit: for each texel (group) of the level,
+// the relative RMS of its model at the held-out rows of all the level-0
+// texels it pools (the group a level-0 texel joins as FitLafortuneMip
+// pools them: x -> min(x / 2, width - 1) per level); the mean over the
+// level's texels. *usable: every texel of the level fitted.
+double LevelError(const LafortuneMipResult& r, size_t l,
+                  const MeasurementTable& test, const ViewIndex& test_views,
+                  const TexelRows& test_rows, bool* usable) {
+  const LafortuneLevel& level = r.levels[l];
+  std::vector<std::vector<size_t>> pooled(level.texels.size());
+  for (const auto& [texel, indices] : test_rows) {
+    int x = texel.first, y = texel.second;
+    for (size_t k = 1; k <= l; ++k) {
+      x = std::min(x / 2, r.levels[k].width - 1);
+      y = std::min(y / 2, r.levels[k].height - 1);
     }
-    if (!note.empty()) break;
+    std::vector<size_t>& to = pooled[y * level.width + x];
+    to.insert(to.end(), indices.begin(), indices.end());
+  }
+  *usable = true;
+  double sum = 0.0;
+  int n = 0;
+  for (size_t i = 0; i < level.texels.size(); ++i) {
+    *usable = *usable && level.texels[i].usable;
+    double rms = 0.0, rel = 0.0;
+    LafortuneErrors(level.texels[i].model, test, test_views, pooled[i], &rms,
+                    &rel);
+    sum += rel;
+    ++n;
+  }
+  return n ? sum / n : kNaN;
+}
+
+// Model size over mip levels: the default fit with all levels, timed
+// (o.repeats runs) level by level; per level a row of the model
+// "lafortune_mip" with its time, its error against the held-out rows
+// (LevelError) and its size = texels of the level.
+void BenchMipLevels(const BenchOptions& o, const MeasurementTable& train,
+                    const MeasurementTable& test, const ViewIndex& test_views,
+                    const TexelRows& test_rows, std::vector<BenchRow>* rows) {
+  Say(o, "lafortune: mip levels");
+  LafortuneMipOptions fit;
+  fit.mip = true;
+  std::vector<std::vector<double>> seconds;  // [level][run]
+  LafortuneMipResult r;
+  for (int run = 0; run < std::max(1, o.repeats); ++run) {
+    r = FitLafortuneMip(train, fit);
+    seconds.resize(r.levels.size());
+    for (size_t l = 0; l < r.levels.size(); ++l) {
+      seconds[l].push_back(r.levels[l].seconds);
+    }
+  }
+  for (size_t l = 0; l < r.levels.size(); ++l) {
+    const LafortuneLevel& level = r.levels[l];
     BenchRow row;
-    row.model = "lafortune";
-    row.config = "scipy least_squares lobes=" + std::to_string(k) + " lut=off";
-    row.group = "SciPy peer";
-    row.repeats = static_cast<int>(seconds.size());
-    row.wall_median_s = row.cpu_median_s = Median(seconds);
-    row.wall_min_s = *std::min_element(seconds.begin(), seconds.end());
-    row.wall_max_s = *std::max_element(seconds.begin(), seconds.end());
-    row.peak_mb = kNaN;  // another process
-    row.value_error = result.at("value_error").get<double>();
+    row.model = "lafortune_mip";
+    row.config = "level=" + std::to_string(l) + " (" +
+                 std::to_string(level.width) + " x " +
+                 std::to_string(level.height) + ")";
+    row.label = "level " + std::to_string(l);
+    row.group = "lobes=2 lut=on";
+    row.repeats = static_cast<int>(seconds[l].size());
+    row.wall_median_s = Median(seconds[l]);
+    row.wall_min_s = *std::min_element(seconds[l].begin(), seconds[l].end());
+    row.wall_max_s = *std::max_element(seconds[l].begin(), seconds[l].end());
+    row.cpu_median_s = kNaN;  // the level's share is not measured
+    row.peak_mb = kNaN;
+    row.value_error =
+        LevelError(r, l, test, test_views, test_rows, &row.success);
     row.param_error = kNaN;
-    row.size = kNaN;
-    row.success = true;
+    row.size = static_cast<double>(level.texels.size());
+    row.is_default = l == 0;
     rows->push_back(row);
   }
-  std::remove(train_csv.c_str());
-  std::remove(test_csv.c_str());
-  std::remove(json_out.c_str());
-  return note;
 }
 
 std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
@@ -330,10 +547,19 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
     (i % lights % 4 == 3 ? test : train).rows.push_back(all.rows[i]);
   }
   const ViewIndex test_views(test);
-  std::map<std::pair<int, int>, std::vector<size_t>> test_rows;
+  TexelRows test_rows;
   for (size_t i = 0; i < test.rows.size(); ++i) {
     test_rows[{test.rows[i].s, test.rows[i].t}].push_back(i);
   }
+  // Level 0's error: the mean over texels of the relative RMS at their
+  // held-out rows.
+  auto run = [&](const LafortuneMipOptions& fit) {
+    const LafortuneMipResult r = FitLafortuneMip(train, fit);
+    Outcome out;
+    out.value_error =
+        LevelError(r, 0, test, test_views, test_rows, &out.success);
+    return out;
+  };
   struct Knobs {
     int lobes;
     bool lut;
@@ -367,27 +593,7 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
     fit.fit.function_tolerance = std::pow(10.0, -k.ftol_exp);
     fit.threads = k.threads;
     fit.mip = k.mip;
-    BenchRow row = Measure(o, [&]() {
-      const LafortuneMipResult r = FitLafortuneMip(train, fit);
-      Outcome out;
-      out.success = true;
-      double sum = 0.0;
-      int n = 0;
-      const LafortuneLevel& level = r.levels[0];
-      for (int y = 0; y < level.height; ++y) {
-        for (int x = 0; x < level.width; ++x) {
-          const TexelFit& t = level.texels[y * level.width + x];
-          out.success = out.success && t.usable;
-          double rms = 0.0, rel = 0.0;
-          LafortuneErrors(t.model, test, test_views, test_rows[{x, y}], &rms,
-                          &rel);
-          sum += rel;
-          ++n;
-        }
-      }
-      out.value_error = n ? sum / n : kNaN;
-      return out;
-    });
+    BenchRow row = Measure(o, [&]() { return run(fit); });
     row.model = "lafortune";
     row.config = config.str();
     row.group = std::string("lut=") + (k.lut ? "on" : "off");
@@ -396,6 +602,16 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
         k.lobes == 2 && k.lut && k.ftol_exp == 5 && k.threads == 0 && !k.mip;
     rows->push_back(row);
   }
+  SweepLinearSolvers(
+      o, "lafortune",
+      [&](LinearSolver solver) {
+        LafortuneMipOptions fit;
+        fit.mip = false;
+        fit.fit.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
+  BenchMipLevels(o, train, test, test_views, test_rows, rows);
   return RunPeer(o, train, test,
                  o.quick ? std::vector<int>{2} : std::vector<int>{1, 2}, rows);
 }
@@ -403,7 +619,7 @@ std::string BenchLafortune(const BenchOptions& o, std::vector<BenchRow>* rows) {
 // Slab: tau 0.05, albedo (0.4, 0.3, 0.2) (inside the single-scattering
 // regime, docs/slab.md), reflection and transmission rows, 2 % noise;
 // knobs: solver starts and one tau per channel.
-void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const SlabParams truth = BenchSlabTruth();
   const Problem problem =
       MakeProblem(truth, o.quick ? 300 : 3000, true, o.seed, o.seed + 3000);
@@ -411,6 +627,16 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const std::vector<TableRow>& held_out = problem.held_out;
   std::vector<double> truth_values(SlabParams::kSize);
   ToArray(truth, truth_values.data());
+  auto run = [&](const SlabFitOptions& fit) {
+    const SlabFitResult r = FitSlab({table}, fit);
+    Outcome out;
+    out.success = r.report.usable && r.report.converged;
+    out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
+    std::vector<double> values(SlabParams::kSize);
+    ToArray(r.params, values.data());
+    out.param_error = LargestRelativeError(values, truth_values);
+    return out;
+  };
   for (int starts :
        o.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 4}) {
     for (bool per_channel : {false, true}) {
@@ -421,17 +647,7 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
       SlabFitOptions fit;
       fit.solve_starts = starts;
       fit.per_channel_tau = per_channel;
-      BenchRow row = Measure(o, [&]() {
-        const SlabFitResult r = FitSlab({table}, fit);
-        Outcome out;
-        out.success = r.report.usable && r.report.converged;
-        out.value_error =
-            HeldOutError(r.params, truth, held_out, table.quantity);
-        std::vector<double> values(SlabParams::kSize);
-        ToArray(r.params, values.data());
-        out.param_error = LargestRelativeError(values, truth_values);
-        return out;
-      });
+      BenchRow row = Measure(o, [&]() { return run(fit); });
       row.model = "slab";
       row.config = config;
       row.group =
@@ -442,6 +658,16 @@ void BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
       rows->push_back(row);
     }
   }
+  SweepLinearSolvers(
+      o, "slab",
+      [&](LinearSolver solver) {
+        SlabFitOptions fit;
+        fit.solver.linear_solver = solver;
+        return run(fit);
+      },
+      rows);
+  return RunModelPeer(o, "slab", problem, truth, SlabParams(),
+                      FitSlab({table}, SlabFitOptions()).report, rows);
 }
 
 // Holes: the thickness of a random mask's opaque texels from ray-traced
@@ -454,25 +680,12 @@ void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const HoleTexture texture = AnalyzeMask(mask, true);
   HolesParams truth;
   truth.thickness_texels = 0.8;
-  auto table_at = [&](const std::vector<double>& phis) {
-    MeasurementTable table;
-    table.quantity = Quantity::kTransmittance;
-    table.channels = 1;
-    for (double theta : {0.0, 15.0, 30.0, 45.0, 55.0}) {
-      for (double phi : phis) {
-        TableRow row;
-        row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
-        const HoleRatios ratios =
-            HoleTruthTile(mask, ViewOffset(truth.thickness_texels, row.wo),
-                          o.quick ? 16 : 32);
-        row.value = glm::dvec3(HolesTransmittance(truth, ratios).x);
-        table.rows.push_back(row);
-      }
-    }
-    return table;
-  };
-  const MeasurementTable table = table_at({0.0, 90.0, 180.0, 270.0});
-  const MeasurementTable held_out = table_at({45.0, 135.0, 225.0, 315.0});
+  const std::vector<double> thetas = {0.0, 15.0, 30.0, 45.0, 55.0};
+  const int samples = o.quick ? 16 : 32;
+  const MeasurementTable table =
+      HolesTruthTable(mask, truth, thetas, {0.0, 90.0, 180.0, 270.0}, samples);
+  const MeasurementTable held_out = HolesTruthTable(
+      mask, truth, thetas, {45.0, 135.0, 225.0, 315.0}, samples);
   for (HoleMethod method : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
     for (int level : {0, -1}) {
       const std::string config = std::string("method=") +
@@ -488,20 +701,8 @@ void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
         out.success = r.report.usable && r.report.converged;
         // Held out: the fitted thickness's transmittance (the same method)
         // against the ground truth at the other azimuths.
-        const LevelTexels texels = GatherLevel(
-            texture, level < 0 ? texture.counts.levels() - 1 : level);
-        double se = 0.0, ss = 0.0;
-        for (const TableRow& row : held_out.rows) {
-          const double m =
-              HolesTransmittance(
-                  r.params,
-                  TileRatios(texels, method,
-                             ViewOffset(r.params.thickness_texels, row.wo)))
-                  .x;
-          se += (m - row.value.x) * (m - row.value.x);
-          ss += row.value.x * row.value.x;
-        }
-        out.value_error = ss > 0.0 ? std::sqrt(se / ss) : kNaN;
+        out.value_error =
+            HolesHeldOutError(r.params, texture, method, level, held_out);
         out.param_error =
             std::abs(r.params.thickness_texels - truth.thickness_texels) /
             truth.thickness_texels;
@@ -558,12 +759,16 @@ double HeldOutError(const ModelParams& fitted, const ModelParams& truth,
 std::vector<BenchRow> RunBench(const BenchOptions& options,
                                std::string* peer_note) {
   std::vector<BenchRow> rows;
-  std::string note = "the SciPy peer runs on the Lafortune problems only";
-  if (Wanted(options, "thread")) BenchThread(options, &rows);
-  if (Wanted(options, "cloth")) BenchCloth(options, &rows);
-  if (Wanted(options, "slab")) BenchSlab(options, &rows);
+  // The first reason a peer did not run (the same for all, as a rule).
+  std::string note;
+  auto keep = [&](const std::string& n) {
+    if (note.empty()) note = n;
+  };
+  if (Wanted(options, "thread")) keep(BenchThread(options, &rows));
+  if (Wanted(options, "cloth")) keep(BenchCloth(options, &rows));
+  if (Wanted(options, "slab")) keep(BenchSlab(options, &rows));
   if (Wanted(options, "holes")) BenchHoles(options, &rows);
-  if (Wanted(options, "lafortune")) note = BenchLafortune(options, &rows);
+  if (Wanted(options, "lafortune")) keep(BenchLafortune(options, &rows));
   if (peer_note) *peer_note = note;
   return rows;
 }
@@ -648,34 +853,43 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
 
     md << "\n## " << model << "\n\n![speed against accuracy](" << model
        << "_speed_accuracy.png)\n";
-    // The peer beside clothfit's same problem (lobes K, no lookup table).
+    // The peer beside clothfit's same problem: the default configuration
+    // (Lafortune: the same lobe count K without lookup table).
     for (const BenchRow& peer : mine) {
       if (peer.group != "SciPy peer") continue;
+      const size_t at = peer.config.find("lobes=");
       const std::string lobes =
-          peer.config.substr(peer.config.find("lobes="), 7);
+          at == std::string::npos ? "" : peer.config.substr(at, 7);
       for (const BenchRow& r : mine) {
-        if (r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all", 0) !=
-            0) {
-          continue;
-        }
-        md << "\nSciPy peer, " << lobes
-           << " without lookup table: " << Short(peer.cpu_median_s)
-           << " s CPU against clothfit's " << Short(r.cpu_median_s) << " s ("
+        const bool same =
+            lobes.empty()
+                ? r.is_default
+                : r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all",
+                                 0) == 0;
+        if (!same) continue;
+        md << "\nSciPy peer" << (lobes.empty() ? "" : ", " + lobes)
+           << (lobes.empty() ? " against clothfit's default"
+                             : " without lookup table")
+           << ": " << Short(peer.cpu_median_s) << " s CPU against clothfit's "
+           << Short(r.cpu_median_s) << " s ("
            << Short(peer.cpu_median_s / r.cpu_median_s)
            << " x); held-out error " << Short(peer.value_error) << " against "
-           << Short(r.value_error) << ".\n";
+           << Short(r.value_error) << " (difference "
+           << Short(peer.value_error - r.value_error) << ").\n";
       }
     }
-    if (model == "lafortune" && !peer_note.empty()) {
-      md << "\n" << peer_note << ".\n";
-    }
+    const bool has_peer = model == "thread" || model == "cloth" ||
+                          model == "slab" || model == "lafortune";
+    if (has_peer && !peer_note.empty()) md << "\n" << peer_note << ".\n";
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
     if (sized) {
       ScatterChart size;
       size.title = model + ": error against model size";
-      size.x_label =
-          model == "cloth" ? "tangent samples T per thread" : "lobes K";
+      size.x_label = model == "cloth"           ? "tangent samples T per thread"
+                     : model == "lafortune_mip" ? "texels of the mip level"
+                                                : "lobes K";
+      size.log_x = model == "lafortune_mip";
       size.y_label = "held-out relative RMS error";
       std::map<std::string, size_t> size_series;
       for (const BenchRow& r : mine) {
@@ -702,6 +916,7 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
           p.x = r.size;
           p.y = r.value_error;
           p.highlight = r.size == pick;
+          p.label = r.label;
           size.series[index].points.push_back(p);
         }
         md << "\n`--tolerance` just above the best error of " << group << " (+"

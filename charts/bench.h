@@ -25,7 +25,7 @@ struct BenchOptions {
   bool quick = false;  // seconds, for the test suite: small data, few knobs
   int repeats = 3;     // timed runs per configuration (median, min, max)
   // Fitters to run ("thread", "cloth", "lafortune", "slab", "holes");
-  // empty = all.
+  // empty = all. The stability study runs those of them it has.
   std::vector<std::string> models;
   uint64_t seed = 1;
   std::function<void(const std::string&)> progress;  // may be empty
@@ -50,6 +50,7 @@ struct BenchRow {
   double size = 0.0;          // model size (lobes; NaN where not swept)
   bool success = false;       // the fit reported usable and converged
   std::string group;          // series of the charts (e.g. "lut=on")
+  std::string label;          // beside the point in the size chart
 };
 
 // peer_note (may be null): what became of the peer ("" when it ran).

@@ -1,7 +1,6 @@
-// Charts as PNG images drawn with OpenCV: line charts (several series over
-// one x axis) and heat maps (one or more panels over a shared colour
-// scale). Written atomically (io/atomic_file.h); the CSV behind a chart is
-// the caller's to write.
+// Line charts as PNG images drawn with OpenCV (several series over one x
+// axis; heat maps: charts/heat_map.h). Written atomically
+// (io/atomic_file.h); the CSV behind a chart is the caller's to write.
 #pragma once
 
 #include <array>
@@ -28,26 +27,8 @@ struct LineChart {
   int width = 900, height = 560;
 };
 
-// One panel of a heat map: values[row * columns + column], row 0 drawn at
-// the bottom (like a y axis).
-struct HeatmapPanel {
-  std::string title;
-  int rows = 0, columns = 0;
-  std::vector<double> values;
-};
-
-struct Heatmap {
-  std::string title, x_label, y_label, value_label;
-  std::vector<std::string> x_ticks, y_ticks;  // one per column / row
-  std::vector<HeatmapPanel> panels;           // drawn side by side
-  // Colour scale; when lo >= hi it spans the values.
-  double v_min = 0.0, v_max = 0.0;
-  int cell = 56;  // cell size in pixels
-};
-
 // Throws InputError naming the path when it cannot be written, and for an
 // empty or inconsistent chart.
 void WriteLineChartPng(const LineChart& chart, const std::string& path);
-void WriteHeatmapPng(const Heatmap& heatmap, const std::string& path);
 
 }  // namespace clothfit

@@ -1,8 +1,11 @@
-// Heat-map charts as PNG, drawn with OpenCV: a grid of coloured cells
-// (viridis, linear or logarithmic scale) with the value printed in each
-// cell, labelled axes, a title, a colour bar, and an outline around cells
+// Heat-map charts as PNG, drawn with OpenCV: one or more panels side by
+// side over shared axes and one colour scale (viridis, linear or
+// logarithmic), a grid of coloured cells with a text in each (given, or the
+// value), labelled axes, a title, a colour bar, and an outline around cells
 // above a threshold. The data behind a chart are written by its caller
-// (CSV); this draws only.
+// (CSV); this draws only, atomically (io/atomic_file.h). The one heat map
+// of the project: the holes' error charts (holes/hole_charts.cc) and the
+// slab's error map (data_synthetic/slab_error_map.cc) use it.
 #pragma once
 
 #include <string>
@@ -10,17 +13,27 @@
 
 namespace clothfit {
 
+struct HeatMapPanel {
+  std::string title;  // above the panel; may be empty
+  // values[row * columns + column], row 0 at the top (the order of
+  // HeatMap::y_labels); non-finite values are drawn grey.
+  std::vector<double> values;
+  // Optional, same layout as values; empty: each value printed with three
+  // significant digits ("-" where it is not finite).
+  std::vector<std::string> cell_text;
+};
+
 struct HeatMap {
   std::string title;
   std::string x_title, y_title;
   std::vector<std::string> x_labels;  // one per column, left to right
   std::vector<std::string> y_labels;  // one per row, top to bottom
-  // values[row * columns + column]; non-finite values are drawn grey.
-  std::vector<double> values;
-  std::vector<std::string> cell_text;  // optional, same layout as values
-  double lo = 0.0, hi = 1.0;           // colour range (clamped outside)
-  bool log_scale = false;              // colours by log10 (lo, hi > 0)
-  std::string legend;                  // colour bar caption
+  std::vector<HeatMapPanel> panels;   // side by side, at least one
+  // Colour range (clamped outside); lo >= hi: the range of the finite
+  // values of all panels.
+  double lo = 0.0, hi = 0.0;
+  bool log_scale = false;  // colours by log10 (lo, hi > 0)
+  std::string legend;      // colour bar caption
   // With outline_above, cells whose value exceeds `threshold` get a red
   // outline, explained by threshold_label under the grid.
   bool outline_above = false;

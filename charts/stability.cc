@@ -7,8 +7,11 @@
 #include <sstream>
 
 #include "charts/chart.h"
+#include "charts/holes_problem.h"
+#include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/cloth_fit.h"
+#include "fitting/holes_fit.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
@@ -90,6 +93,54 @@ ThreadParams FarThread(ThreadParams p, double factor) {
   return p;
 }
 
+// One holes run (fitting/holes_fit.h): a random mask (half opaque, one per
+// seed), columns 0.8 texels high (wall colour 0.3 when it is fitted), the
+// model's transmittance (the extension at the top level, the fit's
+// default: the study tests the fit, not the model against ray tracing,
+// which `bench` measures) at views theta 0-70 deg x 4 azimuths (restricted
+// by the coverage knob) with 2 % noise unless the noise is the knob; held
+// out: 4 other azimuths at theta 5-65 deg. Returns the held-out error;
+// *ok: exit status 0.
+double HolesRun(const std::string& knob, double level, bool wall, Loss loss,
+                bool quick, uint64_t seed, bool* ok) {
+  const int size = quick ? 16 : 32;
+  const Mask mask = RandomMask(size, size, 0.5, seed);
+  const HoleTexture texture = AnalyzeMask(mask, true);
+  HolesParams truth;
+  truth.thickness_texels = 0.8;
+  if (wall) truth.wall_color = glm::dvec3(0.3);
+  std::vector<double> thetas;
+  for (double theta = 0.0; theta <= 70.0; theta += 10.0) {
+    const bool keep = knob != "coverage" || level >= 90.0 ||
+                      (level > 0.0 ? theta <= level : theta >= -level);
+    if (keep) thetas.push_back(theta);
+  }
+  HolesFitOptions fit;
+  MeasurementTable table = HolesModelTable(
+      texture, truth, fit.method, fit.level, thetas, {0.0, 90.0, 180.0, 270.0});
+  const MeasurementTable held_out =
+      HolesModelTable(texture, truth, fit.method, fit.level,
+                      {5.0, 25.0, 45.0, 65.0}, {45.0, 135.0, 225.0, 315.0});
+  Random random(seed);
+  const double noise = knob == "noise" ? level : 0.02;
+  for (TableRow& r : table.rows) {
+    r.value *= std::max(0.0, 1.0 + noise * random.Normal());
+    if (knob == "outliers" && random.Uniform() < level) r.value *= 10.0;
+  }
+  fit.solver.loss = loss;
+  fit.fit_wall_color = wall;
+  if (knob == "start_distance") {  // thickness x factor from the truth
+    HolesParams start;
+    start.thickness_texels = truth.thickness_texels * level;
+    fit.init = start;
+  }  // else the fit's own start (HolesParams(), and its grid), as a user's
+  const HolesFitResult r = FitHoles(table, texture, fit);
+  *ok = r.report.usable && r.report.converged;
+  const double e =
+      HolesHeldOutError(r.params, texture, fit.method, fit.level, held_out);
+  return std::isnan(e) ? HUGE_VAL : e;
+}
+
 }  // namespace
 
 std::vector<StabilityRow> RunStability(const BenchOptions& options) {
@@ -118,7 +169,7 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
   };
   // The slab: tau 0.05, albedo (0.4, 0.3, 0.2), inside its regime.
   const SlabParams slab = BenchSlabTruth();
-  enum class Kind { kThread, kCloth, kSlab };
+  enum class Kind { kThread, kCloth, kSlab, kHoles, kHolesWall };
   struct Fitter {
     std::string name;
     Kind kind;
@@ -127,7 +178,10 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
   std::vector<Fitter> fitters = {
       {"thread", Kind::kThread, Loss::kNone},
       {"thread+cauchy", Kind::kThread, Loss::kCauchy},
-      {"slab", Kind::kSlab, Loss::kNone}};
+      {"slab", Kind::kSlab, Loss::kNone},
+      {"holes", Kind::kHoles, Loss::kNone},
+      {"holes+cauchy", Kind::kHoles, Loss::kCauchy},
+      {"holes+wall", Kind::kHolesWall, Loss::kNone}};
   // The cloth fit takes seconds: not in the quick study.
   if (!options.quick) fitters.push_back({"cloth", Kind::kCloth, Loss::kNone});
   std::vector<StabilityRow> out;
@@ -135,6 +189,13 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
     for (const Fitter& fitter : fitters) {
       // The robust loss only matters for outliers.
       if (fitter.loss != Loss::kNone && knob.name != "outliers") continue;
+      // --models: "holes" stands for "holes+wall" and "holes+cauchy" too.
+      const std::string base = fitter.name.substr(0, fitter.name.find('+'));
+      if (!options.models.empty() &&
+          std::find(options.models.begin(), options.models.end(), base) ==
+              options.models.end()) {
+        continue;
+      }
       for (double level : knob.levels) {
         if (options.progress) {
           options.progress("stability: " + fitter.name + " " + knob.name + " " +
@@ -152,14 +213,23 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
               fitter.kind == Kind::kCloth  ? ModelParams(satin)
               : fitter.kind == Kind::kSlab ? ModelParams(slab)
                                            : ModelParams(thread);
+          const bool holes =
+              fitter.kind == Kind::kHoles || fitter.kind == Kind::kHolesWall;
           // Thread and slab tables have wo over the whole sphere.
-          const Trial trial = MakeTrial(
-              truth, fitter.kind != Kind::kCloth, knob.name, level,
-              fitter.kind == Kind::kCloth ? cloth_rows : thread_rows, seed);
+          const Trial trial =
+              holes
+                  ? Trial()
+                  : MakeTrial(
+                        truth, fitter.kind != Kind::kCloth, knob.name, level,
+                        fitter.kind == Kind::kCloth ? cloth_rows : thread_rows,
+                        seed);
           const double factor = knob.name == "start_distance" ? level : 1.0;
           bool ok = false;
           double error = HUGE_VAL;
-          if (fitter.kind == Kind::kSlab) {
+          if (holes) {
+            error = HolesRun(knob.name, level, fitter.kind == Kind::kHolesWall,
+                             fitter.loss, options.quick, seed, &ok);
+          } else if (fitter.kind == Kind::kSlab) {
             SlabFitOptions fit;
             fit.solver.loss = fitter.loss;
             SlabParams start = slab;  // tau and albedo x factor

@@ -9,7 +9,9 @@
 // held-out directions. Data: synthetic, from the satin's warp thread
 // (thread fitter), the whole satin (cloth fitter, from the generic start)
 // and a thin slab (tau 0.05), brdf tables with multiplicative Gaussian
-// noise (2 % unless the noise is the knob).
+// noise (2 % unless the noise is the knob); the holes fit (thickness, and
+// with "holes+wall" the wall colour) on ray-traced transmittance of random
+// masks (stability.cc HolesRun).
 #pragma once
 
 #include <string>
@@ -22,7 +24,8 @@ namespace clothfit {
 constexpr double kStabilitySuccessError = 0.05;
 
 struct StabilityRow {
-  std::string fitter;  // "thread", "cloth", "slab", "thread+cauchy"
+  std::string fitter;  // "thread", "cloth", "slab", "thread+cauchy", "holes",
+                       // "holes+cauchy", "holes+wall"
   std::string knob;    // "noise", "start_distance", "coverage", "outliers"
   double level = 0.0;  // the knob's value (coverage: the largest polar angle
                        // in degrees; negative: grazing only, theta >= -level)

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "charts/heat_map.h"
 #include "data_synthetic/slab_monte_carlo.h"
 #include "io/atomic_file.h"
-#include "charts/heat_map.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
@@ -108,17 +108,19 @@ void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
   chart.y_title = "albedo A";
   for (double tau : o.taus) chart.x_labels.push_back(Short(tau));
   const size_t n_tau = o.taus.size();
+  HeatMapPanel panel;
   for (size_t a = o.albedos.size(); a-- > 0;) {  // highest albedo on top
     chart.y_labels.push_back(Short(o.albedos[a]));
     for (size_t t = 0; t < n_tau; ++t) {
       const SlabErrorCell& cell = map.cells[a * n_tau + t];
-      chart.values.push_back(cell.relative_rms_error);
+      panel.values.push_back(cell.relative_rms_error);
       char text[32];
       std::snprintf(text, sizeof(text), "%.2g%%",
                     100.0 * cell.relative_rms_error);
-      chart.cell_text.push_back(text);
+      panel.cell_text.push_back(text);
     }
   }
+  chart.panels = {panel};
   chart.lo = 1e-3;
   chart.hi = 1.0;
   chart.log_scale = true;

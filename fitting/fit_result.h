@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/linear_solver.h"
 #include "io/table.h"
 
 namespace clothfit {
@@ -18,6 +19,8 @@ struct SolverOptions {
   Loss loss = Loss::kNone;
   double loss_scale = 1.0;  // in units of sigma (residuals are normalised)
   int num_threads = 1;
+  // Of the Levenberg-Marquardt steps (fitting/linear_solver.h).
+  LinearSolver linear_solver = LinearSolver::kDenseQr;
   // Told what a long fit is doing ("start 2 of 3", "candidate 4 of 12: ...");
   // may be empty.
   std::function<void(const std::string&)> progress;

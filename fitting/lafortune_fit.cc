@@ -106,8 +106,8 @@ constexpr int kLaterPassIterations = 8;
 
 // One Levenberg-Marquardt pass on one channel; returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
-                 int channel, int lobes, int max_iterations,
-                 double function_tolerance, double* x) {
+                 int channel, int lobes, const LafortuneFitOptions& fit,
+                 double* x) {
   // Ceres refuses (and logs) a start whose cost is not finite; such a start
   // (a lobe power overflowing) is left as it is and the caller sees the
   // non-finite cost.
@@ -133,9 +133,13 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
     problem.SetParameterUpperBound(x, 4 + 4 * k, kMaxN);
   }
   ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
-  options.max_num_iterations = max_iterations;
-  options.function_tolerance = function_tolerance;
+  bool lapack = false;
+  options.linear_solver_type = static_cast<ceres::LinearSolverType>(
+      CeresLinearSolverType(fit.linear_solver, &lapack));
+  options.dense_linear_algebra_library_type =
+      lapack ? ceres::LAPACK : ceres::EIGEN;
+  options.max_num_iterations = fit.max_iterations;
+  options.function_tolerance = fit.function_tolerance;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -197,9 +201,7 @@ PassResult FitLobes(const TexelSamples& samples,
     }
     std::vector<double> lut(t.size());
     for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
-    out.iterations +=
-        SolveChannel(samples, lut, c, lobes, options.max_iterations,
-                     options.function_tolerance, x.data());
+    out.iterations += SolveChannel(samples, lut, c, lobes, options, x.data());
     LafortuneChannelFromArray(x.data(), c, p);
   }
   return out;

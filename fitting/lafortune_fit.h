@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fitting/fit_result.h"
+#include "fitting/linear_solver.h"
 #include "io/table.h"
 #include "models/lafortune.h"
 
@@ -88,6 +89,10 @@ struct LafortuneFitOptions {
   // default) 106 iterations per fit, 1e-5 76 for +0.9 % error, 1e-4 53 for
   // +2.8 %.
   double function_tolerance = 1e-5;
+  // Of the Levenberg-Marquardt steps (fitting/linear_solver.h): a texel
+  // channel has at most 13 parameters and thousands of samples, where the
+  // normal equations are cheaper than QR of the Jacobian (docs/bench.md).
+  LinearSolver linear_solver = LinearSolver::kDenseNormalCholesky;
   // First pass: channels 1 and 2 start from channel 0's solution, scaled
   // (measured: 20 % fewer iterations, 0.7 % lower error).
   bool warm_channels = true;

@@ -129,6 +129,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
   int done = 0;
   std::exception_ptr error;
   for (size_t l = 0; l < sizes.size() && !error; ++l) {
+    const auto level_t0 = std::chrono::steady_clock::now();
     if (l > 0) group_rows(l - 1);
     // The children of each texel of level l (level l - 1's texels in its
     // group).
@@ -169,6 +170,9 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     for (int i = 1; i < level_threads; ++i) pool.emplace_back(worker);
     worker();
     for (std::thread& t : pool) t.join();
+    out.levels[l].seconds = std::chrono::duration<double>(
+                                std::chrono::steady_clock::now() - level_t0)
+                                .count();
   }
   if (error) std::rethrow_exception(error);
   out.fits = static_cast<int>(all_jobs);

@@ -44,6 +44,7 @@ struct LafortuneLevel {
   int width = 0, height = 0;
   std::vector<TexelFit> texels;  // y * width + x
   size_t samples = 0;            // all samples of the level
+  double seconds = 0.0;          // wall time of the level's fits
 };
 
 struct LafortuneMipResult {

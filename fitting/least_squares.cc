@@ -299,7 +299,11 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     BuiltProblem built;
     Build(lsq, options, &x, &built);
     ceres::Solver::Options solver_options;
-    solver_options.linear_solver_type = ceres::DENSE_QR;
+    bool lapack = false;
+    solver_options.linear_solver_type = static_cast<ceres::LinearSolverType>(
+        CeresLinearSolverType(options.linear_solver, &lapack));
+    solver_options.dense_linear_algebra_library_type =
+        lapack ? ceres::LAPACK : ceres::EIGEN;
     solver_options.max_num_iterations = options.max_iterations;
     solver_options.num_threads = options.num_threads;
     solver_options.function_tolerance = 1e-6;

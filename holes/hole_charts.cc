@@ -4,9 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "charts/chart_png.h"
+#include "charts/heat_map.h"
 #include "data_synthetic/holes_truth.h"
 #include "io/atomic_file.h"
-#include "charts/chart_png.h"
 
 namespace clothfit {
 namespace {
@@ -144,18 +145,22 @@ void WriteErrorMap(const ErrorMap& map, const std::string& png,
       "\n# truth_samples_per_texel_side: " + std::to_string(o.truth_samples) +
       "\nhole_size,thickness_texels,rms_alg31,rms_extension,max_alg31,"
       "max_extension\n";
-  Heatmap heatmap;
+  HeatMap heatmap;
   heatmap.title = "RMS error of the tile transmittance vs ground truth";
-  heatmap.x_label = "hole size (texels)";
-  heatmap.y_label = "thickness h";
-  heatmap.value_label = "RMS error";
-  for (int s : o.hole_sizes) heatmap.x_ticks.push_back(std::to_string(s));
-  for (double t : o.thicknesses) heatmap.y_ticks.push_back(Number(t));
-  HeatmapPanel alg{"Algorithm 3.1", static_cast<int>(o.thicknesses.size()),
-                   static_cast<int>(o.hole_sizes.size()), map.rms_alg31};
-  HeatmapPanel ext{"extension (8-direction runs)",
-                   static_cast<int>(o.thicknesses.size()),
-                   static_cast<int>(o.hole_sizes.size()), map.rms_extension};
+  heatmap.x_title = "hole size (texels)";
+  heatmap.y_title = "thickness h";
+  heatmap.legend = "RMS error";
+  for (int s : o.hole_sizes) heatmap.x_labels.push_back(std::to_string(s));
+  // The largest thickness on top.
+  HeatMapPanel alg{"Algorithm 3.1", {}, {}};
+  HeatMapPanel ext{"extension (8-direction runs)", {}, {}};
+  for (size_t t = o.thicknesses.size(); t-- > 0;) {
+    heatmap.y_labels.push_back(Number(o.thicknesses[t]));
+    for (size_t s = 0; s < o.hole_sizes.size(); ++s) {
+      alg.values.push_back(map.rms_alg31[t * o.hole_sizes.size() + s]);
+      ext.values.push_back(map.rms_extension[t * o.hole_sizes.size() + s]);
+    }
+  }
   heatmap.panels = {alg, ext};
   for (size_t t = 0; t < o.thicknesses.size(); ++t) {
     for (size_t s = 0; s < o.hole_sizes.size(); ++s) {
@@ -167,7 +172,7 @@ void WriteErrorMap(const ErrorMap& map, const std::string& png,
               Number(map.max_extension[cell]) + "\n";
     }
   }
-  WriteHeatmapPng(heatmap, png);
+  WriteHeatMapPng(heatmap, png);
   WriteFileAtomically(csv, text);
 }
 

@@ -8,7 +8,9 @@
 
 #include "charts/bench.h"
 #include "charts/chart.h"
+#include "charts/heat_map.h"
 #include "io/atomic_file.h"
+#include "io/input_error.h"
 #include "tests/io_test_util.h"
 
 namespace clothfit {
@@ -82,6 +84,46 @@ TEST(ChartTest, ChartsAreWrittenWithAndWithoutDrawablePoints) {
   EXPECT_TRUE(IsPng((dir / "p.png").string()));
   EXPECT_THROW(WriteScatterChartPng(spec, (dir / "missing" / "c.png").string()),
                std::exception);
+}
+
+// The PNG's width from its IHDR chunk (bytes 16-19, big-endian).
+int PngWidth(const std::string& path) {
+  const std::string bytes = ReadFileToString(path);
+  int width = 0;
+  for (int i = 16; i < 20; ++i) {
+    width = width * 256 + static_cast<unsigned char>(bytes.at(i));
+  }
+  return width;
+}
+
+// The one heat map (charts/heat_map.h): panels side by side over one
+// colour scale (from the values when no range is given; non-finite cells
+// and the default value text allowed); inconsistent layouts are refused.
+TEST(ChartTest, HeatMapsDrawPanelsSideBySideAndRefuseBadLayouts) {
+  const fs::path dir = testing_util::FreshTestDir("charts_test_");
+  HeatMap map;
+  map.title = "t";
+  map.x_labels = {"1", "2", "3"};
+  map.y_labels = {"top", "bottom"};
+  map.panels = {{"a", {0.1, 0.2, NAN, 0.4, 0.5, 0.6}, {}}};
+  const std::string one = (dir / "one.png").string();
+  WriteHeatMapPng(map, one);
+  EXPECT_TRUE(IsPng(one));
+  map.panels.push_back({"b", {1, 2, 3, 4, 5, 6}, {"", "", "", "", "", "x"}});
+  const std::string two = (dir / "two.png").string();
+  WriteHeatMapPng(map, two);
+  EXPECT_TRUE(IsPng(two));
+  EXPECT_GE(PngWidth(two) - PngWidth(one), 3 * 60);  // a panel of 3 columns
+  map.log_scale = true;  // range from the positive values
+  WriteHeatMapPng(map, two);
+  map.lo = -1.0;
+  map.hi = 1.0;
+  EXPECT_THROW(WriteHeatMapPng(map, two), InputError);  // log of lo <= 0
+  map.log_scale = false;
+  map.panels[1].values.pop_back();
+  EXPECT_THROW(WriteHeatMapPng(map, two), InputError);
+  map.panels.clear();
+  EXPECT_THROW(WriteHeatMapPng(map, two), InputError);
 }
 
 }  // namespace

@@ -1,0 +1,125 @@
+// The bench's SciPy peer (benchmarks/peer/scipy_models.py, issue 7) fits
+// the same models as clothfit: its NumPy thread, cloth and slab formulas
+// match clothfit's values on noise-free tables written here, and its cloth
+// matches the independent implementation of the conformance data
+// (SPEC §3.2). Skipped where /usr/bin/python3 has no SciPy (the bench then
+// skips the peer).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "data_synthetic/synthetic_table.h"
+#include "io/params_json.h"
+#include "io/table.h"
+#include "models/presets.h"
+#include "tests/cli_test_util.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kAgreement = 1e-9;  // largest difference / largest value
+
+bool HaveScipy() {
+  return std::system("/usr/bin/python3 -c 'import scipy' 2>/dev/null") == 0;
+}
+
+// The peer's largest relative difference from the table's values at
+// `params` (scipy_models.py check).
+double PeerDifference(const fs::path& dir, const std::string& model,
+                      const ModelParams& params, const MeasurementTable& t) {
+  const std::string params_path = (dir / (model + ".json")).string();
+  const std::string table_path = (dir / (model + ".csv")).string();
+  const std::string out_path = (dir / (model + "_out.json")).string();
+  WriteParamFile({params, ""}, params_path);
+  WriteTable(t, table_path);
+  const std::string command =
+      "/usr/bin/python3 " CLOTHFIT_PEER_DIR "/scipy_models.py check " + model +
+      " " + params_path + " " + table_path + " > " + out_path;
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  const nlohmann::json out =
+      nlohmann::json::parse(testing_util::ReadText(out_path));
+  EXPECT_EQ(out.at("rows").get<size_t>(), t.rows.size());
+  return out.at("max_relative_difference").get<double>();
+}
+
+MeasurementTable CleanTable(const ModelParams& truth, bool full_sphere) {
+  DirectionSampling sampling;
+  sampling.rows = 400;
+  sampling.full_sphere_out = full_sphere;
+  return SyntheticTable(truth, sampling, SynthOptions(), 5);
+}
+
+TEST(PeerModels, ThreadAndSlabMatchClothfitOnBothSides) {
+  if (!HaveScipy()) GTEST_SKIP() << "no SciPy in /usr/bin/python3";
+  const fs::path dir = testing_util::FreshTestDir("peer_models_test_");
+  for (const char* preset : {"polyester_satin_charmeuse", "velvet"}) {
+    ClothParams cloth;
+    ASSERT_TRUE(GetPreset(preset, &cloth));
+    for (const ClothThread& thread : cloth.threads) {
+      EXPECT_LT(PeerDifference(dir, "thread", thread.params,
+                               CleanTable(thread.params, true)),
+                kAgreement)
+          << preset;
+    }
+  }
+  SlabParams slab;
+  slab.tau = glm::dvec3(0.05, 0.2, 0.6);
+  slab.albedo = glm::dvec3(0.4, 0.3, 0.2);
+  const MeasurementTable table = CleanTable(slab, true);
+  int transmission = 0;
+  for (const TableRow& r : table.rows) transmission += r.wo.z < 0.0;
+  EXPECT_GT(transmission, 100);  // both f_r and f_t are compared
+  EXPECT_LT(PeerDifference(dir, "slab", slab, table), kAgreement);
+}
+
+TEST(PeerModels, ClothMatchesClothfitAndTheConformanceData) {
+  if (!HaveScipy()) GTEST_SKIP() << "no SciPy in /usr/bin/python3";
+  const fs::path dir = testing_util::FreshTestDir("peer_models_test_");
+  // The conformance rows (rho) of each preset, as brdf tables (f = rho /
+  // wi.z).
+  std::ifstream in(std::string(CLOTHFIT_SHARED_DIR) +
+                   "/data/conformance/microcylinder_rho.csv");
+  ASSERT_TRUE(in) << "conformance data missing";
+  std::string line;
+  std::getline(in, line);  // header
+  std::map<std::string, MeasurementTable> tables;
+  while (std::getline(in, line)) {
+    std::stringstream fields(line);
+    std::string preset, field;
+    std::getline(fields, preset, ',');
+    double v[9];
+    for (double& x : v) {
+      std::getline(fields, field, ',');
+      x = std::stod(field);
+    }
+    TableRow row;
+    row.wi = {v[0], v[1], v[2]};
+    row.wo = {v[3], v[4], v[5]};
+    row.value = glm::dvec3(v[6], v[7], v[8]) / v[2];
+    tables[preset].quantity = Quantity::kBrdf;
+    tables[preset].rows.push_back(row);
+  }
+  ASSERT_EQ(tables.size(), 5u);
+  for (const auto& [preset, table] : tables) {
+    ClothParams cloth;
+    ASSERT_TRUE(GetPreset(preset, &cloth)) << preset;
+    // SPEC §3.2: the independent implementation, to 1e-6 relative.
+    EXPECT_LT(PeerDifference(dir, "cloth", cloth, table), 1e-6) << preset;
+    EXPECT_LT(PeerDifference(dir, "cloth", cloth, CleanTable(cloth, false)),
+              kAgreement)
+        << preset;
+  }
+}
+
+}  // namespace
+}  // namespace clothfit
