@@ -3,11 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "conformance_util.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
 
@@ -27,29 +26,14 @@ ClothParams Preset(const std::string& name) {
 
 // Every row of the independent implementation's output (SPEC §3.2).
 TEST(MicrocylinderConformance, MatchesIndependentImplementation) {
-  const std::string path = std::string(CLOTHFIT_SHARED_DIR) +
-                           "/data/conformance/microcylinder_rho.csv";
-  std::ifstream in(path);
-  ASSERT_TRUE(in) << "cannot open " << path;
-  std::string line;
-  std::getline(in, line);
-  ASSERT_EQ(line, "preset,wi_x,wi_y,wi_z,wo_x,wo_y,wo_z,rho_r,rho_g,rho_b");
   int rows = 0;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string name, field;
-    std::getline(ss, name, ',');
-    double v[9];
-    for (double& x : v) {
-      std::getline(ss, field, ',');
-      x = std::stod(field);
-    }
-    const glm::dvec3 rho = ClothRho(Preset(name), glm::dvec3(v[0], v[1], v[2]),
-                                    glm::dvec3(v[3], v[4], v[5]));
+  for (const testing_util::ConformanceRow& row :
+       testing_util::ReadConformanceRows()) {
+    const glm::dvec3 rho = ClothRho(Preset(row.preset), row.wi, row.wo);
     for (int c = 0; c < 3; ++c) {
-      const double ref = v[6 + c];
+      const double ref = row.rho[c];
       EXPECT_NEAR(rho[c], ref, 1e-6 * std::abs(ref) + 1e-300)
-          << name << " row " << rows + 2 << " channel " << c;
+          << row.preset << " row " << rows + 2 << " channel " << c;
     }
     ++rows;
   }

@@ -9,10 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "data_synthetic/synthetic_table.h"
@@ -20,6 +18,7 @@
 #include "io/table.h"
 #include "models/presets.h"
 #include "tests/cli_test_util.h"
+#include "tests/conformance_util.h"
 #include "tests/io_test_util.h"
 
 namespace clothfit {
@@ -87,27 +86,15 @@ TEST(PeerModels, ClothMatchesClothfitAndTheConformanceData) {
   const fs::path dir = testing_util::FreshTestDir("peer_models_test_");
   // The conformance rows (rho) of each preset, as brdf tables (f = rho /
   // wi.z).
-  std::ifstream in(std::string(CLOTHFIT_SHARED_DIR) +
-                   "/data/conformance/microcylinder_rho.csv");
-  ASSERT_TRUE(in) << "conformance data missing";
-  std::string line;
-  std::getline(in, line);  // header
   std::map<std::string, MeasurementTable> tables;
-  while (std::getline(in, line)) {
-    std::stringstream fields(line);
-    std::string preset, field;
-    std::getline(fields, preset, ',');
-    double v[9];
-    for (double& x : v) {
-      std::getline(fields, field, ',');
-      x = std::stod(field);
-    }
+  for (const testing_util::ConformanceRow& c :
+       testing_util::ReadConformanceRows()) {
     TableRow row;
-    row.wi = {v[0], v[1], v[2]};
-    row.wo = {v[3], v[4], v[5]};
-    row.value = glm::dvec3(v[6], v[7], v[8]) / v[2];
-    tables[preset].quantity = Quantity::kBrdf;
-    tables[preset].rows.push_back(row);
+    row.wi = c.wi;
+    row.wo = c.wo;
+    row.value = c.rho / c.wi.z;
+    tables[c.preset].quantity = Quantity::kBrdf;
+    tables[c.preset].rows.push_back(row);
   }
   ASSERT_EQ(tables.size(), 5u);
   for (const auto& [preset, table] : tables) {

@@ -16,7 +16,6 @@ Prints one JSON object: seconds (the fits only), fits, value_error (mean over
 texels of the relative RMS at the TEST rows), the solver's evaluations.
 Exits 3 when SciPy is missing (the bench then says so and skips the peer).
 """
-import csv
 import json
 import sys
 import time
@@ -24,19 +23,11 @@ import time
 try:
     import numpy as np
     from scipy.optimize import least_squares
+
+    from peer_table import read_columns
 except ImportError:  # the bench skips the peer with a message
     sys.stderr.write("scipy_lafortune: SciPy/NumPy not available\n")
     sys.exit(3)
-
-
-def read_table(path):
-    """Rows of a clothfit table as numpy arrays keyed by column name."""
-    with open(path, newline="") as f:
-        lines = [line for line in f if not line.startswith("#")]
-    reader = csv.reader(lines)
-    header = [h.strip().lower() for h in next(reader)]
-    data = np.array([[float(x) for x in row] for row in reader if row])
-    return {name: data[:, i] for i, name in enumerate(header)}
 
 
 def f1(x, lobes, xx, yy, zz, lz):
@@ -72,7 +63,7 @@ def terms(t, rows):
 
 
 def main():
-    train, test, lobes = read_table(sys.argv[1]), read_table(sys.argv[2]), int(
+    train, test, lobes = read_columns(sys.argv[1]), read_columns(sys.argv[2]), int(
         sys.argv[3])
     texels = sorted(set(zip(train["s"].astype(int), train["t"].astype(int))))
     lo, hi = bounds(lobes)

@@ -22,7 +22,6 @@ relative error of a free parameter), nfev, success. `check` prints the largest r
 table's values and this model at PARAMS (a test compares it with
 clothfit's). Exits 3 when SciPy/NumPy are missing.
 """
-import csv
 import json
 import math
 import re
@@ -32,6 +31,8 @@ import time
 try:
     import numpy as np
     from scipy.optimize import least_squares
+
+    from peer_table import read_columns
 except ImportError:  # the bench skips the peer with a message
     sys.stderr.write("scipy_models: SciPy/NumPy not available\n")
     sys.exit(3)
@@ -39,12 +40,7 @@ except ImportError:  # the bench skips the peer with a message
 
 def read_table(path):
     """A clothfit table: (wi, wo) as n x 3 arrays, values n x 3, sigma."""
-    with open(path, newline="") as f:
-        lines = [line for line in f if not line.startswith("#")]
-    reader = csv.reader(lines)
-    header = [h.strip().lower() for h in next(reader)]
-    data = np.array([[float(x) for x in row] for row in reader if row])
-    col = {name: data[:, i] for i, name in enumerate(header)}
+    col = read_columns(path)
 
     def direction(prefix, theta, phi):
         if prefix + "_x" in col:
