@@ -58,9 +58,25 @@ void ExpectJsonNear(const nlohmann::json& a, const nlohmann::json& b,
   }
 }
 
+// No value of `j` is null: a NaN or infinity is written as null, and a fit
+// never emits either (issue 8).
+void ExpectNoNull(const nlohmann::json& j, const std::string& where) {
+  EXPECT_FALSE(j.is_null()) << where;
+  if (j.is_object()) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      ExpectNoNull(it.value(), where + "." + it.key());
+    }
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) {
+      ExpectNoNull(j[i], where + "[" + std::to_string(i) + "]");
+    }
+  }
+}
+
 // Runs `fit_args` + `--threads N --out OUT` for the thread counts given,
-// twice with the first: the two runs' files are byte-identical, and every
-// other thread count's file equals it within kThreadTolerance.
+// twice with the first: the two runs' files are byte-identical and hold no
+// NaN or infinity, and every other thread count's file equals the first
+// within kThreadTolerance.
 void CheckFitDeterminism(const fs::path& dir,
                          const std::vector<std::string>& fit_args,
                          const std::vector<std::string>& threads) {
@@ -79,6 +95,7 @@ void CheckFitDeterminism(const fs::path& dir,
   ASSERT_FALSE(text.empty());
   EXPECT_EQ(text, ReadText(again)) << "same inputs, same threads";
   const nlohmann::json reference = nlohmann::json::parse(text);
+  ExpectNoNull(reference, "file");
   for (size_t i = 1; i < threads.size(); ++i) {
     const std::string other = run(threads[i], "t" + threads[i] + ".json");
     ExpectJsonNear(reference, nlohmann::json::parse(ReadText(other)),
