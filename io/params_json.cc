@@ -215,6 +215,13 @@ json ParseJson(const std::string& text, const std::string& name) {
     const size_t pos = what.find("parse error");
     throw InputError(name + ": invalid JSON: " +
                      (pos == std::string::npos ? what : what.substr(pos)));
+  } catch (const json::exception& e) {
+    // Not only syntax: a number beyond the double range ("1e999") is an
+    // out_of_range error (found by fuzz/params_target.cc).
+    std::string what = e.what();
+    const size_t pos = what.find("] ");
+    throw InputError(name + ": invalid JSON: " +
+                     (pos == std::string::npos ? what : what.substr(pos + 2)));
   }
 }
 
