@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/image_guard.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 #include "models/math.h"
@@ -207,6 +208,10 @@ Image ReadImage(const std::string& path, const std::string& manifest,
   if (fs::is_directory(path, error)) {
     Fail(path, 0, 0,
          std::string("cannot read image: ") + std::strerror(EISDIR) + listed);
+  }
+  const std::string header_problem = CheckImageHeader(path, kMaxPixels);
+  if (!header_problem.empty()) {
+    Fail(path, 0, 0, "cannot read image: " + header_problem + listed);
   }
   OIIO::ImageSpec config;
   // Values as stored: PNG/TIFF colours are not multiplied by alpha.

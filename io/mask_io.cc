@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -13,10 +14,14 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/image_guard.h"
 #include "io/input_error.h"
 
 namespace clothfit {
 namespace {
+
+// Texels reserved for the mask up front (more as rows are read).
+constexpr int64_t kReservedTexels = int64_t{1} << 20;
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
@@ -61,6 +66,9 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   if (!std::filesystem::is_regular_file(path, error)) {
     Fail(path, "cannot read mask: no such file");
   }
+  const std::string header_problem = CheckImageHeader(path, kMaxMaskTexels);
+  if (!header_problem.empty())
+    Fail(path, "cannot read mask image: " + header_problem);
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
@@ -84,13 +92,6 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
     Fail(path, "mask image has no alpha channel (" + std::to_string(channels) +
                    " channels); use the luminance");
   }
-  std::vector<float> pixels(static_cast<size_t>(width * height) * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT,
-                      pixels.data())) {
-    Fail(path, "cannot read mask image: " + OneLineError(in->geterror()));
-  }
-  in->close();
-
   std::vector<int> colour;  // the channels other than alpha
   for (int c = 0; c < channels; ++c) {
     if (c != alpha) colour.push_back(c);
@@ -101,23 +102,39 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   Mask mask;
   mask.width = static_cast<int>(width);
   mask.height = static_cast<int>(height);
-  mask.opaque.resize(static_cast<size_t>(width * height));
-  const float* p = pixels.data();
-  for (size_t i = 0; i < mask.opaque.size(); ++i, p += channels) {
-    double value = p[use_alpha ? alpha : colour[0]];
-    if (!use_alpha && colour.size() >= 3) {
-      value =
-          0.2126 * p[colour[0]] + 0.7152 * p[colour[1]] + 0.0722 * p[colour[2]];
+  // Row by row, so that the float pixels never take more than a row's
+  // memory and a header that claims a huge image in a short (truncated or
+  // corrupt) file fails at its first missing row, not after allocating for
+  // the whole claim. OpenImageIO 2.4's read_scanlines allocated a buffer
+  // for 256 rows when asked for one: a 102-byte BMP that claims to be
+  // 9175044 texels wide made it allocate 7 GB (found by
+  // fuzz/mask_target.cc). The mask grows with the rows actually read.
+  std::vector<float> pixels(static_cast<size_t>(width) * channels);
+  mask.opaque.reserve(
+      static_cast<size_t>(std::min(width * height, kReservedTexels)));
+  for (int64_t y = 0; y < height; ++y) {
+    if (!in->read_scanline(static_cast<int>(spec.y + y), 0,
+                           OIIO::TypeDesc::FLOAT, pixels.data())) {
+      Fail(path, "cannot read mask image: " + OneLineError(in->geterror()));
     }
-    if (!std::isfinite(value)) {
-      Fail(path, "texel (" + std::to_string(i % width) + ", " +
-                     std::to_string(i / width) + ") is not a finite number");
+    const float* p = pixels.data();
+    for (int64_t x = 0; x < width; ++x, p += channels) {
+      double value = p[use_alpha ? alpha : colour[0]];
+      if (!use_alpha && colour.size() >= 3) {
+        value = 0.2126 * p[colour[0]] + 0.7152 * p[colour[1]] +
+                0.0722 * p[colour[2]];
+      }
+      if (!std::isfinite(value)) {
+        Fail(path, "texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                       ") is not a finite number");
+      }
+      bool opaque =
+          use_alpha ? value >= options.threshold : value < options.threshold;
+      if (options.invert) opaque = !opaque;
+      mask.opaque.push_back(opaque ? 1 : 0);
     }
-    bool opaque =
-        use_alpha ? value >= options.threshold : value < options.threshold;
-    if (options.invert) opaque = !opaque;
-    mask.opaque[i] = opaque ? 1 : 0;
   }
+  in->close();
   return mask;
 }
 
