@@ -23,8 +23,9 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/image_input.h"
+#include "io/image_guard.h"
 #include "io/input_error.h"
+#include "io/oiio_messages.h"
 #include "io/text_util.h"
 #include "models/math.h"
 
@@ -194,41 +195,54 @@ Image ReadImage(const std::string& path, const std::string& manifest,
     Fail(path, 0, 0,
          std::string("cannot read image: ") + std::strerror(EISDIR) + listed);
   }
-  ImagePixels pixels;
-  std::string error_message;
-  auto check_header = [&](const ImagePixels& header) {
-    if (header.width < 1 || header.height < 1 || header.depth > 1 ||
-        int64_t{header.width} * header.height > kMaxPixels) {
-      Fail(path, 0, 0,
-           "unsupported image size " + std::to_string(header.width) + " x " +
-               std::to_string(header.height) + " x " +
-               std::to_string(header.depth) + listed);
-    }
-    if (header.channels < 1 || header.channels > 4) {
-      Fail(path, 0, 0,
-           "image has " + std::to_string(header.channels) +
-               " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
-               "(rgba)" +
-               listed);
-    }
-  };
-  if (!ReadImagePixels(path, check_header, &pixels, &error_message)) {
-    Fail(path, 0, 0, "cannot read image: " + error_message + listed);
+  const std::string header_problem = CheckImageHeader(path, kMaxPixels);
+  if (!header_problem.empty()) {
+    Fail(path, 0, 0, "cannot read image: " + header_problem + listed);
   }
+  OIIO::ImageSpec config;
+  // Values as stored: PNG/TIFF colours are not multiplied by alpha.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  QuietStderr quiet;  // until the pixels are read: libpng's own lines
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    Fail(path, 0, 0,
+         "cannot read image: " + OneLineMessage(OIIO::geterror()) + listed);
+  }
+  const OIIO::ImageSpec& spec = in->spec();
   Image image;
-  image.width = pixels.width;
-  image.height = pixels.height;
-  image.channels = pixels.channels;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  if (image.width < 1 || image.height < 1 || spec.depth > 1 ||
+      int64_t{image.width} * image.height > kMaxPixels) {
+    Fail(path, 0, 0,
+         "unsupported image size " + std::to_string(image.width) + " x " +
+             std::to_string(image.height) + " x " + std::to_string(spec.depth) +
+             listed);
+  }
+  if (image.channels < 1 || image.channels > 4) {
+    Fail(path, 0, 0,
+         "image has " + std::to_string(image.channels) +
+             " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
+             "(rgba)" +
+             listed);
+  }
   if (image.channels == 2 || image.channels == 4) {
-    image.alpha =
-        pixels.alpha_channel >= 0 && pixels.alpha_channel < image.channels
-            ? pixels.alpha_channel
-            : image.channels - 1;
+    image.alpha = spec.alpha_channel >= 0 && spec.alpha_channel < image.channels
+                      ? spec.alpha_channel
+                      : image.channels - 1;
   }
   for (int c = 0; c < image.channels; ++c) {
     if (c != image.alpha) image.colour.push_back(c);
   }
-  image.pixels = std::move(pixels.pixels);
+  image.pixels.resize(static_cast<size_t>(image.width) * image.height *
+                      image.channels);
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
+                      image.pixels.data())) {
+    Fail(path, 0, 0,
+         "cannot read image: " + OneLineMessage(in->geterror()) + listed);
+  }
+  in->close();
   return image;
 }
 

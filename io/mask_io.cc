@@ -1,5 +1,8 @@
 #include "io/mask_io.h"
 
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -11,11 +14,15 @@
 #include <vector>
 
 #include "io/atomic_file.h"
-#include "io/image_input.h"
+#include "io/image_guard.h"
 #include "io/input_error.h"
+#include "io/oiio_messages.h"
 
 namespace clothfit {
 namespace {
+
+// Texels reserved for the mask up front (more as rows are read).
+constexpr int64_t kReservedTexels = int64_t{1} << 20;
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
@@ -51,32 +58,33 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   if (!std::filesystem::is_regular_file(path, error)) {
     Fail(path, "cannot read mask: no such file");
   }
-  ImagePixels image;
-  std::string error_message;
-  auto check_header = [&](const ImagePixels& header) {
-    const int64_t width = header.width, height = header.height;
-    if (width < 1 || height < 1 || header.depth > 1 ||
-        width * height > kMaxMaskTexels) {
-      Fail(path, "unsupported mask size " + std::to_string(width) + " x " +
-                     std::to_string(height) + " (at most " +
-                     std::to_string(kMaxMaskTexels) + " texels)");
-    }
-    if (header.channels < 1) Fail(path, "mask image has no channels");
-  };
-  if (!ReadImagePixels(path, check_header, &image, &error_message)) {
-    Fail(path, "cannot read mask image: " + error_message);
+  const std::string header_problem = CheckImageHeader(path, kMaxMaskTexels);
+  if (!header_problem.empty())
+    Fail(path, "cannot read mask image: " + header_problem);
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored
+  QuietStderr quiet;  // until the pixels are read: libpng's own lines
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
+  if (!in) {
+    Fail(path, "cannot read mask image: " + OneLineMessage(OIIO::geterror()));
   }
-  const int64_t width = image.width, height = image.height;
-  const int channels = image.channels;
-  int alpha = image.alpha_channel;
+  const OIIO::ImageSpec& spec = in->spec();
+  const int64_t width = spec.width, height = spec.height;
+  if (width < 1 || height < 1 || spec.depth > 1 ||
+      width * height > kMaxMaskTexels) {
+    Fail(path, "unsupported mask size " + std::to_string(width) + " x " +
+                   std::to_string(height) + " (at most " +
+                   std::to_string(kMaxMaskTexels) + " texels)");
+  }
+  const int channels = spec.nchannels;
+  if (channels < 1) Fail(path, "mask image has no channels");
+  int alpha = spec.alpha_channel;
   if (alpha < 0 && (channels == 2 || channels == 4)) alpha = channels - 1;
   const bool use_alpha = alpha >= 0 && options.source != MaskSource::kLuminance;
   if (options.source == MaskSource::kAlpha && alpha < 0) {
     Fail(path, "mask image has no alpha channel (" + std::to_string(channels) +
                    " channels); use the luminance");
   }
-  const std::vector<float>& pixels = image.pixels;
-
   std::vector<int> colour;  // the channels other than alpha
   for (int c = 0; c < channels; ++c) {
     if (c != alpha) colour.push_back(c);
@@ -87,23 +95,39 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   Mask mask;
   mask.width = static_cast<int>(width);
   mask.height = static_cast<int>(height);
-  mask.opaque.resize(static_cast<size_t>(width * height));
-  const float* p = pixels.data();
-  for (size_t i = 0; i < mask.opaque.size(); ++i, p += channels) {
-    double value = p[use_alpha ? alpha : colour[0]];
-    if (!use_alpha && colour.size() >= 3) {
-      value =
-          0.2126 * p[colour[0]] + 0.7152 * p[colour[1]] + 0.0722 * p[colour[2]];
+  // Row by row, so that the float pixels never take more than a row's
+  // memory and a header that claims a huge image in a short (truncated or
+  // corrupt) file fails at its first missing row, not after allocating for
+  // the whole claim. OpenImageIO 2.4's read_scanlines allocated a buffer
+  // for 256 rows when asked for one: a 102-byte BMP that claims to be
+  // 9175044 texels wide made it allocate 7 GB (found by
+  // fuzz/mask_target.cc). The mask grows with the rows actually read.
+  std::vector<float> pixels(static_cast<size_t>(width) * channels);
+  mask.opaque.reserve(
+      static_cast<size_t>(std::min(width * height, kReservedTexels)));
+  for (int64_t y = 0; y < height; ++y) {
+    if (!in->read_scanline(static_cast<int>(spec.y + y), 0,
+                           OIIO::TypeDesc::FLOAT, pixels.data())) {
+      Fail(path, "cannot read mask image: " + OneLineMessage(in->geterror()));
     }
-    if (!std::isfinite(value)) {
-      Fail(path, "texel (" + std::to_string(i % width) + ", " +
-                     std::to_string(i / width) + ") is not a finite number");
+    const float* p = pixels.data();
+    for (int64_t x = 0; x < width; ++x, p += channels) {
+      double value = p[use_alpha ? alpha : colour[0]];
+      if (!use_alpha && colour.size() >= 3) {
+        value = 0.2126 * p[colour[0]] + 0.7152 * p[colour[1]] +
+                0.0722 * p[colour[2]];
+      }
+      if (!std::isfinite(value)) {
+        Fail(path, "texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                       ") is not a finite number");
+      }
+      bool opaque =
+          use_alpha ? value >= options.threshold : value < options.threshold;
+      if (options.invert) opaque = !opaque;
+      mask.opaque.push_back(opaque ? 1 : 0);
     }
-    bool opaque =
-        use_alpha ? value >= options.threshold : value < options.threshold;
-    if (options.invert) opaque = !opaque;
-    mask.opaque[i] = opaque ? 1 : 0;
   }
+  in->close();
   return mask;
 }
 

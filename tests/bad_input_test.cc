@@ -273,7 +273,16 @@ std::vector<Command> MaskCommands() {
   };
 }
 
-// Image bytes: a valid PNG of a mask cut short, an empty file, text.
+// `bytes` with `count` bytes from `at` inverted.
+std::string Garbled(std::string bytes, size_t at, size_t count) {
+  for (size_t i = at; i < at + count && i < bytes.size(); ++i) {
+    bytes[i] = static_cast<char>(~bytes[i]);
+  }
+  return bytes;
+}
+
+// Image bytes: a valid PNG of a mask cut short or garbled, an empty file,
+// text.
 std::vector<Defect> MaskDefects(const fs::path& dir) {
   const std::string path = (dir / "whole.png").string();
   WriteMask(MaskFromRows({"##.", "#..", "###"}), path);
@@ -286,6 +295,11 @@ std::vector<Defect> MaskDefects(const fs::path& dir) {
        {"cannot read mask image"}},
       {"empty file", "", {"cannot read mask image"}},
       {"not an image", "hello\n", {"cannot read mask image"}},
+      // Whole chunks, but the compressed pixels garbled: libpng itself
+      // would print a line of its own before OpenImageIO's message.
+      {"corrupt PNG data",
+       Garbled(png, png.find("IDAT") + 8, 10),
+       {"cannot read mask image"}},
   };
 }
 

@@ -1,0 +1,83 @@
+// Fuzz target: parameter files (io/params_json.h).
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "fuzz/fuzz_util.h"
+#include "io/input_error.h"
+#include "io/params_json.h"
+
+namespace clothfit {
+namespace {
+
+using fuzz::Finite;
+using fuzz::Require;
+
+// Same JSON, numbers equal to rounding (a read normalises vectors such as
+// the Lafortune "normal", so a second write may differ in the last digit).
+bool JsonNear(const nlohmann::json& a, const nlohmann::json& b) {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    return std::abs(x - y) <= 1e-12 * std::max(1.0, std::abs(x));
+  }
+  if (a.type() != b.type() || a.size() != b.size()) return false;
+  if (a.is_object()) {
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      if (!b.contains(it.key()) || !JsonNear(it.value(), b.at(it.key()))) {
+        return false;
+      }
+    }
+    return true;
+  }
+  if (a.is_array()) {
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (!JsonNear(a[i], b[i])) return false;
+    }
+    return true;
+  }
+  return a == b;
+}
+
+// A file that was read must write and read back to the same values (every
+// number finite and in range, so FormatParamFile's output is valid input).
+void CheckRoundTrip(const ParamFile& file) {
+  const std::string text = FormatParamFile(file);
+  ParamFile back;
+  try {
+    back = ParseParamFile(text, "round trip");
+  } catch (const InputError& error) {
+    throw FuzzContractError(std::string("FormatParamFile output does not "
+                                        "read back: ") +
+                            error.what());
+  }
+  Require(JsonNear(nlohmann::json::parse(FormatParamFile(back)),
+                   nlohmann::json::parse(text)),
+          "round trip keeps the values");
+}
+
+void CheckHoles(const HolesParamFile& file) {
+  const HolesParams& p = file.params;
+  Require(Finite(p.thickness_texels), "finite thickness");
+  Require(Finite(p.wall_color.x) && Finite(p.wall_color.y) &&
+              Finite(p.wall_color.z),
+          "finite wall colour");
+  Require(file.threshold > 0.0 && file.threshold <= 1.0, "threshold in (0, 1]");
+}
+
+}  // namespace
+
+void FuzzParams(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    CheckRoundTrip(ParseParamFile(text, "fuzz.json"));
+  } catch (const InputError&) {
+    // the expected answer to bad input
+  }
+  try {
+    CheckHoles(ParseHolesParamFile(text, "fuzz.json"));
+  } catch (const InputError&) {
+  }
+}
+
+}  // namespace clothfit

@@ -1,0 +1,30 @@
+// OpenImageIO's messages for the image readers (masks, image stacks): on
+// one line, and only ours. libpng prints its errors on stderr by itself
+// before OpenImageIO returns them, so that bad input would get two
+// messages; a QuietStderr kept while OpenImageIO reads silences it.
+#pragma once
+
+#include <mutex>
+#include <string>
+
+namespace clothfit {
+
+// A library's (possibly multi-line) message on one line; "unknown error"
+// when empty.
+std::string OneLineMessage(const std::string& message);
+
+// Points file descriptor 2 at /dev/null while alive (one at a time in the
+// process: the saved descriptor must be the real stderr).
+class QuietStderr {
+ public:
+  QuietStderr();
+  ~QuietStderr();
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+  int saved_ = -1;
+};
+
+}  // namespace clothfit
