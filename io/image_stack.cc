@@ -202,8 +202,8 @@ Image ReadImage(const std::string& path, const std::string& manifest,
   OIIO::ImageSpec config;
   // Values as stored: PNG/TIFF colours are not multiplied by alpha.
   config.attribute("oiio:UnassociatedAlpha", 1);
-  QuietStderr quiet;  // until the pixels are read: libpng's own lines
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
+  std::unique_ptr<OIIO::ImageInput> in =
+      Quietly([&] { return OIIO::ImageInput::open(path, &config); });
   if (!in) {
     Fail(path, 0, 0,
          "cannot read image: " + OneLineMessage(OIIO::geterror()) + listed);
@@ -237,8 +237,10 @@ Image ReadImage(const std::string& path, const std::string& manifest,
   }
   image.pixels.resize(static_cast<size_t>(image.width) * image.height *
                       image.channels);
-  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
-                      image.pixels.data())) {
+  if (!Quietly([&] {
+        return in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
+                              image.pixels.data());
+      })) {
     Fail(path, 0, 0,
          "cannot read image: " + OneLineMessage(in->geterror()) + listed);
   }

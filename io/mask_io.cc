@@ -63,8 +63,8 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
     Fail(path, "cannot read mask image: " + header_problem);
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // values as stored
-  QuietStderr quiet;  // until the pixels are read: libpng's own lines
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
+  std::unique_ptr<OIIO::ImageInput> in =
+      Quietly([&] { return OIIO::ImageInput::open(path, &config); });
   if (!in) {
     Fail(path, "cannot read mask image: " + OneLineMessage(OIIO::geterror()));
   }
@@ -106,8 +106,10 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
   mask.opaque.reserve(
       static_cast<size_t>(std::min(width * height, kReservedTexels)));
   for (int64_t y = 0; y < height; ++y) {
-    if (!in->read_scanline(static_cast<int>(spec.y + y), 0,
-                           OIIO::TypeDesc::FLOAT, pixels.data())) {
+    if (!Quietly([&] {
+          return in->read_scanline(static_cast<int>(spec.y + y), 0,
+                                   OIIO::TypeDesc::FLOAT, pixels.data());
+        })) {
       Fail(path, "cannot read mask image: " + OneLineMessage(in->geterror()));
     }
     const float* p = pixels.data();

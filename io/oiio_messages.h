@@ -1,7 +1,8 @@
 // OpenImageIO's messages for the image readers (masks, image stacks): on
 // one line, and only ours. libpng prints its errors on stderr by itself
 // before OpenImageIO returns them, so that bad input would get two
-// messages; a QuietStderr kept while OpenImageIO reads silences it.
+// messages; OpenImageIO's calls run Quietly. Only the library call: an
+// AddressSanitizer report from our own code must still reach stderr.
 #pragma once
 
 #include <mutex>
@@ -26,5 +27,13 @@ class QuietStderr {
   std::lock_guard<std::mutex> lock_;
   int saved_ = -1;
 };
+
+// Runs `call` (an OpenImageIO read) with stderr silenced; returns its
+// result.
+template <typename Call>
+auto Quietly(Call call) {
+  QuietStderr quiet;
+  return call();
+}
 
 }  // namespace clothfit
