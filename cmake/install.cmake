@@ -1,7 +1,7 @@
 # Install rules and the CMake package (issue 9). After
 #   cmake --install build --prefix P
 # a consumer with P on CMAKE_PREFIX_PATH writes
-#   find_package(clothfit 0.2 REQUIRED)            # everything
+#   find_package(clothfit 0.3 REQUIRED)            # everything
 #   find_package(clothfit REQUIRED COMPONENTS models)  # GLM only
 # and links clothfit::models (header-only evaluators), clothfit::api (the
 # renderer API, api/material.h) or clothfit::clothfit (every library).
