@@ -258,27 +258,27 @@ std::string RunPeer(const BenchOptions& o, const MeasurementTable& train,
 // table, its held-out directions with the true values, and the parameter
 // vector as `report` (a clothfit fit of the problem) lists it - names,
 // bounds, free entries - with the start and the truth as parameter files.
-std::string RunModelPeer(const BenchOptions& o, const std::string& model,
-                         const Problem& problem, const ModelParams& truth,
-                         const ModelParams& start, const FitReport& report,
-                         std::vector<BenchRow>* rows) {
+// The peer (scipy_models.py) on one problem: `train` fitted from `params`
+// (a parameter file as JSON, the start) with the parameter vector of
+// `report` (names, bounds, free entries), scored against `held` (held-out
+// views with the true values); a row with `config` when it ran, else why
+// not.
+std::string RunPeer(const BenchOptions& o, const std::string& model,
+                    const std::string& config, const MeasurementTable& train,
+                    const MeasurementTable& held, const nlohmann::json& params,
+                    const nlohmann::json& truth, const FitReport& report,
+                    std::vector<BenchRow>* rows) {
   if (o.peer_script.empty()) return "the SciPy peer was not asked for";
   Say(o, model + ": SciPy peer");
   const std::string dir = ScratchDir(o);
   const std::string train_csv = dir + "/peer_" + model + "_train.csv";
   const std::string held_csv = dir + "/peer_" + model + "_held_out.csv";
   const std::string spec_json = dir + "/peer_" + model + "_spec.json";
-  WriteTable(problem.table, train_csv);
-  MeasurementTable held = problem.table;
-  held.has_sigma = false;
-  held.rows = problem.held_out;
-  for (TableRow& row : held.rows) {
-    row.value = Evaluate(truth, row.wi, row.wo, held.quantity);
-  }
+  WriteTable(train, train_csv);
   WriteTable(held, held_csv);
   nlohmann::json spec;
-  spec["params"] = nlohmann::json::parse(FormatParamFile({start, ""}));
-  spec["truth"] = nlohmann::json::parse(FormatParamFile({truth, ""}));
+  spec["params"] = params;
+  spec["truth"] = truth;
   for (const ParameterReport& p : report.parameters) {
     spec["names"].push_back(p.name);
     spec["lower"].push_back(p.lower);
@@ -296,13 +296,29 @@ std::string RunModelPeer(const BenchOptions& o, const std::string& model,
   const std::string note = RunPeerScript(
       o, script, {"fit", model, spec_json, train_csv, held_csv}, true,
       dir + "/peer_" + model + "_out.json", &seconds, &result);
-  if (note.empty()) {
-    rows->push_back(PeerRow(model, "scipy least_squares", seconds, result));
-  }
+  if (note.empty()) rows->push_back(PeerRow(model, config, seconds, result));
   for (const std::string& f : {train_csv, held_csv, spec_json}) {
     std::remove(f.c_str());
   }
   return note;
+}
+
+// The peer on a thread, cloth or slab problem, from `start`; the held-out
+// values are the true model's.
+std::string RunModelPeer(const BenchOptions& o, const std::string& model,
+                         const Problem& problem, const ModelParams& truth,
+                         const ModelParams& start, const FitReport& report,
+                         std::vector<BenchRow>* rows) {
+  MeasurementTable held = problem.table;
+  held.has_sigma = false;
+  held.rows = problem.held_out;
+  for (TableRow& row : held.rows) {
+    row.value = Evaluate(truth, row.wi, row.wo, held.quantity);
+  }
+  return RunPeer(o, model, "scipy least_squares", problem.table, held,
+                 nlohmann::json::parse(FormatParamFile({start, ""})),
+                 nlohmann::json::parse(FormatParamFile({truth, ""})), report,
+                 rows);
 }
 
 // Thread: the satin's warp thread, 2 % noise; knobs: solver starts and the
@@ -670,11 +686,37 @@ std::string BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
                       FitSlab({table}, SlabFitOptions()).report, rows);
 }
 
+// Holes: the peer fits Algorithm 3.1 on the whole tile (linear in the
+// counts, so the top level's nine counts are the model) from the default
+// start, against clothfit's fit with the same method and level.
+std::string RunHolesPeer(const BenchOptions& o, const MeasurementTable& table,
+                         const MeasurementTable& held_out,
+                         const HoleTexture& texture, const HolesParams& truth,
+                         std::vector<BenchRow>* rows) {
+  HolesFitOptions fit;
+  fit.method = HoleMethod::kAlgorithm31;
+  fit.level = -1;
+  const LevelTexels top = GatherLevel(texture, texture.counts.levels() - 1);
+  auto params_json = [&](const HolesParams& p) {
+    nlohmann::json j;
+    j["model"] = "holes";
+    j["thickness_texels"] = p.thickness_texels;
+    j["wall_color"] = {p.wall_color.x, p.wall_color.y, p.wall_color.z};
+    j["counts"] = top.counts[0].counts;
+    j["texels"] = top.area;
+    return j;
+  };
+  return RunPeer(o, "holes", "scipy least_squares method=alg31 level=top",
+                 table, held_out, params_json(HolesParams()),
+                 params_json(truth), FitHoles(table, texture, fit).report,
+                 rows);
+}
+
 // Holes: the thickness of a random mask's opaque texels from ray-traced
 // ground-truth transmittance at 5 x 4 views; held out: 4 other azimuths.
 // Knobs: the method (Algorithm 3.1, the extension) and the pyramid level
 // evaluated (0 or the top).
-void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
+std::string BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const int size = o.quick ? 16 : 64;
   const Mask mask = RandomMask(size, size, 0.5, o.seed);
   const HoleTexture texture = AnalyzeMask(mask, true);
@@ -716,6 +758,7 @@ void BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
       rows->push_back(row);
     }
   }
+  return RunHolesPeer(o, table, held_out, texture, truth, rows);
 }
 
 bool Wanted(const BenchOptions& o, const std::string& model) {
@@ -767,7 +810,7 @@ std::vector<BenchRow> RunBench(const BenchOptions& options,
   if (Wanted(options, "thread")) keep(BenchThread(options, &rows));
   if (Wanted(options, "cloth")) keep(BenchCloth(options, &rows));
   if (Wanted(options, "slab")) keep(BenchSlab(options, &rows));
-  if (Wanted(options, "holes")) BenchHoles(options, &rows);
+  if (Wanted(options, "holes")) keep(BenchHoles(options, &rows));
   if (Wanted(options, "lafortune")) keep(BenchLafortune(options, &rows));
   if (peer_note) *peer_note = note;
   return rows;
@@ -853,23 +896,32 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
 
     md << "\n## " << model << "\n\n![speed against accuracy](" << model
        << "_speed_accuracy.png)\n";
-    // The peer beside clothfit's same problem: the default configuration
-    // (Lafortune: the same lobe count K without lookup table).
+    // The peer beside clothfit's same problem: the configuration its
+    // config names after the solver ("scipy least_squares method=alg31
+    // level=top"), else the default (Lafortune: the same lobe count K
+    // without lookup table).
+    const std::string kPeerName = "scipy least_squares";
     for (const BenchRow& peer : mine) {
       if (peer.group != "SciPy peer") continue;
       const size_t at = peer.config.find("lobes=");
       const std::string lobes =
           at == std::string::npos ? "" : peer.config.substr(at, 7);
+      const std::string twin = peer.config.size() > kPeerName.size()
+                                   ? peer.config.substr(kPeerName.size() + 1)
+                                   : "";
       for (const BenchRow& r : mine) {
+        if (r.group == "SciPy peer") continue;
         const bool same =
-            lobes.empty()
-                ? r.is_default
-                : r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all",
-                                 0) == 0;
+            !lobes.empty()
+                ? r.config.rfind(lobes + " lut=off tolerance=1e-5 threads=all",
+                                 0) == 0
+            : twin.empty() ? r.is_default
+                           : r.config == twin;
         if (!same) continue;
         md << "\nSciPy peer" << (lobes.empty() ? "" : ", " + lobes)
-           << (lobes.empty() ? " against clothfit's default"
-                             : " without lookup table")
+           << (!lobes.empty() ? " without lookup table"
+               : twin.empty() ? " against clothfit's default"
+                              : " against clothfit's " + twin)
            << ": " << Short(peer.cpu_median_s) << " s CPU against clothfit's "
            << Short(r.cpu_median_s) << " s ("
            << Short(peer.cpu_median_s / r.cpu_median_s)
@@ -879,7 +931,8 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
       }
     }
     const bool has_peer = model == "thread" || model == "cloth" ||
-                          model == "slab" || model == "lafortune";
+                          model == "slab" || model == "lafortune" ||
+                          model == "holes";
     if (has_peer && !peer_note.empty()) md << "\n" << peer_note << ".\n";
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);

@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
+#include "holes/hole_texture.h"
 #include "io/params_json.h"
 #include "io/table.h"
 #include "models/presets.h"
@@ -33,13 +35,14 @@ bool HaveScipy() {
 }
 
 // The peer's largest relative difference from the table's values at
-// `params` (scipy_models.py check).
+// `params_json` (scipy_models.py check).
 double PeerDifference(const fs::path& dir, const std::string& model,
-                      const ModelParams& params, const MeasurementTable& t) {
+                      const std::string& params_json,
+                      const MeasurementTable& t) {
   const std::string params_path = (dir / (model + ".json")).string();
   const std::string table_path = (dir / (model + ".csv")).string();
   const std::string out_path = (dir / (model + "_out.json")).string();
-  WriteParamFile({params, ""}, params_path);
+  testing_util::WriteText(params_path, params_json);
   WriteTable(t, table_path);
   const std::string command =
       "/usr/bin/python3 " CLOTHFIT_PEER_DIR "/scipy_models.py check " + model +
@@ -49,6 +52,11 @@ double PeerDifference(const fs::path& dir, const std::string& model,
       nlohmann::json::parse(testing_util::ReadText(out_path));
   EXPECT_EQ(out.at("rows").get<size_t>(), t.rows.size());
   return out.at("max_relative_difference").get<double>();
+}
+
+double PeerDifference(const fs::path& dir, const std::string& model,
+                      const ModelParams& params, const MeasurementTable& t) {
+  return PeerDifference(dir, model, FormatParamFile({params, ""}), t);
 }
 
 MeasurementTable CleanTable(const ModelParams& truth, bool full_sphere) {
@@ -106,6 +114,41 @@ TEST(PeerModels, ClothMatchesClothfitAndTheConformanceData) {
               kAgreement)
         << preset;
   }
+}
+
+// Holes: the peer's Algorithm 3.1 on the tile's nine counts against
+// clothfit's tile evaluation (every view quadrant, offsets clamped and not,
+// a wall colour), one channel as the bench's tables have.
+TEST(PeerModels, HolesMatchClothfitsTileEvaluation) {
+  if (!HaveScipy()) GTEST_SKIP() << "no SciPy in /usr/bin/python3";
+  const fs::path dir = testing_util::FreshTestDir("peer_models_test_");
+  const HoleTexture texture = AnalyzeMask(RandomMask(24, 20, 0.45, 7), false);
+  const int top = texture.counts.levels() - 1;
+  const LevelTexels level = GatherLevel(texture, top);
+  HolesParams p;
+  p.thickness_texels = 0.7;
+  p.wall_color = glm::dvec3(0.3);
+  MeasurementTable table;
+  table.quantity = Quantity::kTransmittance;
+  table.channels = 1;
+  for (double theta : {0.0, 20.0, 45.0, 70.0}) {
+    for (double phi : {0.0, 30.0, 100.0, 200.0, 290.0}) {
+      TableRow row;
+      row.wo = DirectionFromAngles(theta * kRadiansPerDegree,
+                                   phi * kRadiansPerDegree);
+      row.value = HolesTransmittance(
+          p, EvaluateTile(texture, HoleMethod::kAlgorithm31, top,
+                          ViewOffset(p.thickness_texels, row.wo)));
+      table.rows.push_back(row);
+    }
+  }
+  nlohmann::json j;
+  j["model"] = "holes";
+  j["thickness_texels"] = p.thickness_texels;
+  j["wall_color"] = {0.3, 0.3, 0.3};
+  j["counts"] = level.counts[0].counts;
+  j["texels"] = level.area;
+  EXPECT_LT(PeerDifference(dir, "holes", j.dump(), table), kAgreement);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The peer of `clothfit bench` (issue 7) for the thread, cloth and slab
-fits: the same synthetic problems fitted the way a user would without
+"""The peer of `clothfit bench` (issue 7) for the thread, cloth, slab and
+holes fits: the same synthetic problems fitted the way a user would without
 clothfit - the model formulas of SPEC section 3 in NumPy and SciPy's
 least_squares (trust-region reflective, bounds, finite-difference
 Jacobian), from the same start, with the same bounds, free parameters and
@@ -9,7 +9,8 @@ sigma-normalised residuals.
     scipy_models.py fit MODEL SPEC.json TRAIN.csv HELD.csv [REPEATS]
     scipy_models.py check MODEL PARAMS.json TABLE.csv
 
-MODEL: thread, cloth or slab. SPEC.json (written by the bench): "params"
+MODEL: thread, cloth, slab or holes (Algorithm 3.1 on the whole tile: the
+parameter file also holds the tile's nine "counts" and "texels"). SPEC.json (written by the bench): "params"
 (a parameter file, SPEC section 4: the start, with the cloth's weave),
 "truth" (a parameter file of the true values), "names", "lower", "upper",
 "free" (the parameter vector as clothfit's fit report lists it; the start
@@ -42,7 +43,12 @@ def read_table(path):
     """A clothfit table: (wi, wo) as n x 3 arrays, values n x 3, sigma."""
     col = read_columns(path)
 
+    rows = len(next(iter(col.values())))
+
     def direction(prefix, theta, phi):
+        if prefix + "_x" not in col and theta not in col:
+            # A transmittance table may leave out the light: +z (SPEC 2).
+            return np.tile([0.0, 0.0, 1.0], (rows, 1))
         if prefix + "_x" in col:
             v = np.stack([col[prefix + "_" + a] for a in "xyz"], axis=1)
             return v / np.linalg.norm(v, axis=1, keepdims=True)
@@ -199,7 +205,36 @@ def slab_model(p, wi, wo):
     return p.get("scale", 1.0) * np.where(same_side, reflect, transmit)
 
 
-MODELS = {"thread": thread_model, "cloth": cloth_model, "slab": slab_model}
+# --- Holes (SPEC 3.5, Algorithm 3.1 on the whole tile) -----------------------
+
+def holes_model(p, wi, wo):
+    """Transmittance of a holed layer: Algorithm 3.1 on the tile's nine
+    counts ("counts": walls top/left/bottom/right, triangles topRight/
+    topLeft/bottomLeft/bottomRight, opaques; "texels": the tile's area),
+    which is linear in the counts, so the tile is one texel of them."""
+    c = np.asarray(p["counts"], dtype=float)
+    texels = float(p["texels"])
+    h = float(p["thickness_texels"])
+    z = np.maximum(np.abs(wo[:, 2]), 1e-9)
+    rx = np.clip(-h * wo[:, 0] / z, -1.0, 1.0)
+    ry = np.clip(-h * wo[:, 1] / z, -1.0, 1.0)
+    right, left, top, bottom = rx > 0, rx < 0, ry > 0, ry < 0
+    h_walls = np.where(right, c[3], np.where(left, c[1], 0.0))
+    v_walls = np.where(top, c[0], np.where(bottom, c[2], 0.0))
+    d = np.select([right & top, right & bottom, left & top, left & bottom],
+                  [c[4], c[7], c[5], c[6]], 0.0)
+    ax, ay = np.abs(rx), np.abs(ry)
+    half = 0.5 * ax * ay
+    occluded = (h_walls * (ax - half) + v_walls * (ay - half) + d * half) / (
+        texels)
+    transparent = 1.0 - occluded - c[8] / texels
+    wall = np.broadcast_to(np.asarray(p.get("wall_color", 0.0), dtype=float),
+                           (3,))
+    return transparent[:, None] + wall * occluded[:, None]
+
+
+MODELS = {"thread": thread_model, "cloth": cloth_model, "slab": slab_model,
+          "holes": holes_model}
 
 
 # --- Parameter vectors as clothfit's fit report names them ------------------
@@ -214,14 +249,14 @@ def set_named(p, name, value):
     if m:
         p, name = p["threads"][int(m.group(1))], m.group(2)
     key, channel = name, None
-    if name[-2:] in CHANNEL and name[:-2] in ("albedo", "tau"):
+    if name[-2:] in CHANNEL and name[:-2] in ("albedo", "tau", "wall_color"):
         key, channel = name[:-2], CHANNEL[name[-2:]]
     if channel is None:
         p[key] = value
         return
     if key == "tau" and not isinstance(p.get("tau"), list):
         return  # one tau for all channels: "tau" is the free entry
-    values = list(np.broadcast_to(np.asarray(p[key], dtype=float), (3,)))
+    values = list(np.broadcast_to(np.asarray(p.get(key, 0.0), dtype=float), (3,)))
     values[channel] = value
     p[key] = values
 
@@ -231,8 +266,9 @@ def get_named(p, name):
     m = re.match(r"threads\[(\d+)\]\.(.*)", name)
     if m:
         p, name = p["threads"][int(m.group(1))], m.group(2)
-    if name[-2:] in CHANNEL and name[:-2] in ("albedo", "tau"):
-        values = np.broadcast_to(np.asarray(p[name[:-2]], dtype=float), (3,))
+    if name[-2:] in CHANNEL and name[:-2] in ("albedo", "tau", "wall_color"):
+        values = np.broadcast_to(np.asarray(p.get(name[:-2], 0.0),
+                                            dtype=float), (3,))
         return float(values[CHANNEL[name[-2:]]])
     defaults = {"scale": 1.0, "offset_scale": 1.0}
     return float(np.asarray(p.get(name, defaults.get(name)), dtype=float))
