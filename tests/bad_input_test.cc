@@ -32,8 +32,9 @@ using testing_util::WriteText;
 
 struct Defect {
   std::string name;
-  std::string content;              // the bad file's bytes
-  std::vector<std::string> pieces;  // the message must hold each
+  std::string content;  // the bad file's bytes
+  // The message must hold each; one starting with ":" follows the name.
+  std::vector<std::string> pieces;
 };
 
 // A command line with "BAD" where the defective file goes and "OUT" (with
@@ -100,8 +101,12 @@ class BadInputTest : public ::testing::Test {
       WriteText(bad, defect.content);
       for (const Command& command : commands) {
         SCOPED_TRACE(defect.name + ": " + command[0] + " " + command[1]);
-        std::vector<std::string> pieces = defect.pieces;
-        pieces.push_back(name);
+        // ":3:5:" means "bad.csv:3:5:" (file, line, column together).
+        std::vector<std::string> pieces = {name};
+        for (const std::string& piece : defect.pieces) {
+          pieces.push_back(!piece.empty() && piece[0] == ':' ? name + piece
+                                                             : piece);
+        }
         ExpectBadInput(dir_, Fill(command, bad), pieces);
       }
     }
