@@ -7,15 +7,11 @@
 #include "io/input_error.h"
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 
 namespace {
-
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // Nearest texel index along an axis of n texels for a coordinate in [0, 1].
 int TexelIndex(double u, int n) noexcept {
@@ -39,7 +35,7 @@ Material Material::FromParams(const ModelParams& params) {
 }
 
 Material Material::Load(const std::string& path) {
-  if (!EndsWith(path, ".exr")) {
+  if (!text_util::EndsWith(path, ".exr")) {
     return FromParams(ReadParamFile(path).params);
   }
   const ParamMipmap mipmap = ReadParamMipmap(path);

@@ -14,14 +14,10 @@
 #include "io/atomic_file.h"
 #include "io/image_stack.h"
 #include "io/param_mipmap.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
-
-bool EndsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() &&
-         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // A progress bar on a terminal: "[#####.....] 512/1365 texels".
 void ShowProgress(int done, int total) {
@@ -120,7 +116,7 @@ int RunFitLafortune(int argc, char** argv) {
   }
 
   if (!table.has_texels) {  // one model for the whole table
-    if (!EndsWith(out_path, ".json")) {
+    if (!text_util::EndsWith(out_path, ".json")) {
       args.Fail(
           "a table without s,t columns gives one model: --out must be "
           "a .json parameter file");
@@ -163,7 +159,7 @@ int RunFitLafortune(int argc, char** argv) {
     return 0;
   }
 
-  if (!EndsWith(out_path, ".exr")) {
+  if (!text_util::EndsWith(out_path, ".exr")) {
     args.Fail(
         "a table with s,t columns gives a model per texel: --out must "
         "be an .exr file");

@@ -1,8 +1,10 @@
 // clothfit render: preview renders of a parameter file (issue 9;
 // render/preview.h): the cloth on cylinders in three orientations (the
 // paper's Fig. 12), a slab front- and back-lit over a checker, a hole
-// texture on tilted panels; with --compare, a second file's render below
-// the first at the same exposure. Linear EXR plus tone-mapped PNG.
+// texture on tilted panels; a Lafortune parameter mip map (.exr) tiled over
+// the cylinders, each pixel reading the level that matches its footprint; with
+// --compare, a second file's render below the first at the same exposure.
+// Linear EXR plus tone-mapped PNG.
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
 #include "io/mask_io.h"
+#include "io/text_util.h"
 #include "models/presets.h"
 #include "render/preview.h"
 
@@ -68,6 +71,10 @@ PreviewImage RenderOption(const CommandArgs& args,
     return RenderCylinders(cloth, options);
   }
   const std::string path = args.Get(file_option);
+  if (text_util::EndsWith(path, ".exr")) {
+    return RenderCylinders(MipmapRho(Material::Load(path), options.tile),
+                           options);
+  }
   if (IsHolesFile(path)) return RenderHolesFile(args, path, options);
   const ParamFile file = ReadParamFile(path);
   if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
@@ -81,21 +88,29 @@ PreviewImage RenderOption(const CommandArgs& args,
 int RunRender(int argc, char** argv) {
   CommandArgs args(
       "render",
-      "clothfit render (--params P.json | --preset NAME) [--compare Q.json | "
+      "clothfit render (--params P.json|P.exr | --preset NAME) [--compare "
+      "Q.json | "
       "--compare-preset NAME] --out R.exr [--png R.png] [options]",
       "Preview renders under a point light, orthographic camera: cloth, "
-      "thread and Lafortune parameters\nwrap cylinders with the warp "
+      "thread and Lafortune parameters\n(and Lafortune mip maps, tiled) wrap "
+      "cylinders with the warp "
       "vertical, horizontal and diagonal (Sadeghi et al. 2013, Fig. 12); a\n"
       "slab is a tilted panel over a checker, front-lit and back-lit; a holes "
       "file a panel at three\ntilts over a checker. --compare renders a "
       "second file below the first at the same exposure.\nWrites linear "
       "OpenEXR and a tone-mapped PNG (render/preview.h describes the scene).");
-  args.Option("params", "P.json", "parameter file (SPEC §4, or holes)");
+  args.Option("params", "P.json",
+              "parameter file (SPEC §4, or holes), or a Lafortune parameter "
+              "mip map P.exr");
   args.Option("preset", "NAME", "a preset instead of --params");
   args.Option("compare", "Q.json", "a second parameter file, rendered below");
   args.Option("compare-preset", "NAME", "a preset instead of --compare");
   args.Option("mask", "M.png",
               "the mask of a holes file (default: the file's \"mask\")");
+  args.Option("tile", "W",
+              "world size of one repeat of a mip map's texture (cylinder "
+              "radius 1), (0, 100]",
+              "0.8");
   args.Option("out", "R.exr", "linear render (OpenEXR)");
   args.Option("png", "R.png", "tone-mapped render (default: --out as .png)");
   args.Option("size", "N", "pixels per panel side, 8..1024", "96");
@@ -140,6 +155,10 @@ int RunRender(int argc, char** argv) {
   options.tilt_deg = args.GetDouble("tilt-deg");
   if (!(options.tilt_deg >= 0.0 && options.tilt_deg <= 40.0)) {
     args.Fail("option '--tilt-deg': must be in [0, 40]");
+  }
+  options.tile = args.GetDouble("tile");
+  if (!(options.tile > 0.0 && options.tile <= 100.0)) {
+    args.Fail("option '--tile': must be in (0, 100]");
   }
   CheckWritable(out);
   CheckWritable(png);

@@ -10,6 +10,7 @@
 #include "fitting/least_squares.h"
 #include "fitting/start_search.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
@@ -22,11 +23,6 @@ namespace {
 // offset_scale] block per thread: fewer Jet lanes when they are fixed.
 constexpr int kWeaveSize = 2;
 constexpr int kPerThread = ThreadParams::kSize + kWeaveSize;
-
-bool EndsWith(const std::string& name, const std::string& suffix) {
-  return name.size() >= suffix.size() &&
-         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
 
 // What stays fixed through a fit, shared by all residuals.
 struct Weave {
@@ -507,7 +503,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   if (weave->shared_albedo) {  // report the tied albedos at their value
     for (ParameterReport& p : result.report.parameters) {
       for (const char* channel : {"albedo_r", "albedo_g", "albedo_b"}) {
-        if (EndsWith(p.name, std::string(".") + channel)) {
+        if (text_util::EndsWith(p.name, std::string(".") + channel)) {
           p.value = x[4 + (channel[7] == 'r' ? 0 : channel[7] == 'g' ? 1 : 2)];
         }
       }

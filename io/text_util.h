@@ -1,5 +1,5 @@
-// Small text helpers shared by the table and image-stack readers/writers.
-// Internal to clothfit_io; not part of the library's public interface.
+// Small text helpers shared by the readers/writers, the fits and the
+// commands. Internal to clothfit; not part of the stable interface.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +29,9 @@ std::string Printable(std::string_view text);
 // Quotes (part of) a field for an error message: printable ASCII is kept,
 // other bytes are escaped, fields longer than kMaxQuotedLength are shortened.
 std::string Quote(std::string_view text);
+
+// Whether `text` ends with `suffix`.
+bool EndsWith(std::string_view text, std::string_view suffix);
 
 // Splits `line` at every comma (no quoting); always at least one field.
 std::vector<std::string_view> SplitFields(std::string_view line);

@@ -57,8 +57,14 @@ void LightAt(const glm::dvec3& position, double intensity,
   *irradiance = intensity / r2;
 }
 
-const char* const kThreadLayouts[] = {"threads vertical", "threads horizontal",
-                                      "threads diagonal"};
+// The three cylinder panels: title and the warp's angle from the axis.
+struct ThreadLayout {
+  const char* title;
+  double warp_deg;
+};
+constexpr ThreadLayout kThreadLayouts[] = {{"threads vertical", 0.0},
+                                           {"threads horizontal", 90.0},
+                                           {"threads diagonal", 45.0}};
 
 }  // namespace
 
@@ -70,14 +76,26 @@ glm::dvec2 PanelPoint(int i, int j, int size) {
 
 PreviewImage RenderCylinders(const ModelParams& params,
                              const PreviewOptions& options) {
+  return RenderCylinders(
+      [&params](const glm::dvec3& wi, const glm::dvec3& wo, const glm::dvec2&,
+                double) {
+        return Evaluate(params, wi, wo, Quantity::kCosineWeighted);
+      },
+      options);
+}
+
+PreviewImage RenderCylinders(const SurfaceRho& rho,
+                             const PreviewOptions& options) {
   const int size = options.size;
   PreviewImage image = Blank(3, size);
   const double d = options.light_distance;
   const glm::dvec3 light = options.light * d;
   const glm::dvec3 wo(0.0, 0.0, 1.0);
+  const double pixel = 2.0 * kPanelExtent / size;
   for (int panel = 0; panel < 3; ++panel) {
-    image.panel_titles.push_back(kThreadLayouts[panel]);
-    const double alpha = panel * 0.25 * kPi;  // warp from the axis
+    image.panel_titles.push_back(kThreadLayouts[panel].title);
+    const double alpha = Radians(kThreadLayouts[panel].warp_deg);
+    const double ca = std::cos(alpha), sa = std::sin(alpha);
     for (int j = 0; j < size; ++j) {
       for (int i = 0; i < size; ++i) {
         const glm::dvec2 p = PanelPoint(i, j, size);
@@ -85,20 +103,41 @@ PreviewImage RenderCylinders(const ModelParams& params,
         const double z = std::sqrt(1.0 - p.x * p.x);
         const glm::dvec3 point(p.x, p.y, z), n(p.x, 0.0, z);
         const glm::dvec3 axis(0.0, 1.0, 0.0), around(z, 0.0, -p.x);
-        const glm::dvec3 x_s =
-            std::cos(alpha) * axis + std::sin(alpha) * around;
-        const glm::dvec3 y_s = glm::cross(n, x_s);
+        const glm::dvec3 x_s = ca * axis + sa * around;
+        const glm::dvec3 y_s = glm::cross(n, x_s);  // sa axis - ca around
+        // Axis coordinate and arc length, turned like x_s and y_s.
+        const double arc = std::asin(p.x);
+        const glm::dvec2 uv(ca * p.y + sa * arc, sa * p.y - ca * arc);
         glm::dvec3 wi;
         double irradiance = 0.0;
         LightAt(light, d * d, point, &wi, &irradiance);
-        const glm::dvec3 rho =
-            Evaluate(params, ToLocal(wi, x_s, y_s, n), ToLocal(wo, x_s, y_s, n),
-                     Quantity::kCosineWeighted);
-        image.At(panel * size + i, j) = rho * irradiance;
+        image.At(panel * size + i, j) =
+            rho(ToLocal(wi, x_s, y_s, n), ToLocal(wo, x_s, y_s, n), uv,
+                pixel / z) *
+            irradiance;
       }
     }
   }
   return image;
+}
+
+int MipLevelForFootprint(double footprint, double tile, int base_width,
+                         int levels) {
+  const double texels = footprint * base_width / tile;
+  if (!(texels > 1.0)) return 0;  // also NaN
+  const double level = std::round(std::log2(texels));
+  return static_cast<int>(std::min(level, double(levels - 1)));
+}
+
+SurfaceRho MipmapRho(const Material& material, double tile) {
+  return [material, tile](const glm::dvec3& wi, const glm::dvec3& wo,
+                          const glm::dvec2& uv, double footprint) {
+    const int level = MipLevelForFootprint(footprint, tile, material.Width(0),
+                                           material.Levels());
+    const double s = uv.x / tile - std::floor(uv.x / tile);
+    const double t = uv.y / tile - std::floor(uv.y / tile);
+    return material.Rho(wi, wo, s, t, level);
+  };
 }
 
 PreviewImage RenderSlab(const SlabParams& params,

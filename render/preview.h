@@ -7,10 +7,13 @@
 // distance d in direction `light` (so the irradiance is about 1 at the
 // origin), and no other light. A panel spans [-1.2, 1.2]^2 of the world's
 // x, y; its pixel (i, j) has row j = 0 at the top.
-//  - Cylinders (thread, cloth, lafortune): radius 1, axis +y, wrapped in the
-//    cloth with its warp (+x of the surface frame) along the axis
-//    (threads vertical), around it (horizontal) and at 45 degrees
-//    (diagonal): three panels. Radiance = rho(wi, wo) I / r^2.
+//  - Cylinders (thread, cloth, lafortune, Lafortune mip map): radius 1,
+//    axis +y, wrapped in the cloth with its warp (+x of the surface frame)
+//    along the axis (threads vertical), around it (horizontal) and at 45
+//    degrees (diagonal): three panels. Radiance = rho(wi, wo) I / r^2. The
+//    surface's texture coordinates (u, v) are world lengths along the warp
+//    and the weft, measured from the point (0, 0, 1): the axis coordinate y
+//    and the arc length asin(x) around the axis, turned with the warp.
 //  - Slab: a square panel (half-size 0.8) tilted by `tilt_deg` about +y over
 //    a checker backdrop (unlit, values kCheckerDark/kCheckerLight); the
 //    light in front of the panel (front-lit: reflection) and mirrored
@@ -26,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "api/material.h"
 #include "models/evaluate.h"
 #include "models/holes.h"
 
@@ -40,6 +44,7 @@ struct PreviewOptions {
   glm::dvec3 light{0.5, 0.5, 0.7071067811865476};  // unit, towards the light
   double light_distance = 6.0;                     // world units
   double tilt_deg = 35.0;                          // slab and holes panels
+  double tile = 0.8;  // world size of one repeat of a texture (MipmapRho)
 };
 
 // Linear radiance, row-major, row 0 at the top.
@@ -56,10 +61,33 @@ struct PreviewImage {
 // The world position of the centre of pixel (i, j) of a panel (z = 0).
 glm::dvec2 PanelPoint(int i, int j, int size);
 
+// rho(wi, wo) of a surface point: wi and wo in the surface frame, `uv` the
+// point's texture coordinates (world units along the warp and the weft) and
+// `footprint` the width of the pixel's footprint on the surface (world
+// units; the larger side, so grazing pixels cover more).
+using SurfaceRho =
+    std::function<glm::dvec3(const glm::dvec3& wi, const glm::dvec3& wo,
+                             const glm::dvec2& uv, double footprint)>;
+
 // Thread, cloth or lafortune: the three cylinders. Requires a model that
 // reflects (not a slab).
 PreviewImage RenderCylinders(const ModelParams& params,
                              const PreviewOptions& options);
+// The three cylinders of a spatially varying surface.
+PreviewImage RenderCylinders(const SurfaceRho& rho,
+                             const PreviewOptions& options);
+
+// The level of a mip map with a `base_width`-texel level 0 stretched over
+// `tile` world units whose texels are nearest in size to `footprint`:
+// round(log2(footprint base_width / tile)), clamped to [0, levels - 1]
+// (nearest-level, nearest-texel look-up, as Material::Rho does texels).
+int MipLevelForFootprint(double footprint, double tile, int base_width,
+                         int levels);
+
+// A Lafortune parameter mip map (Material::Load of an .exr) repeated every
+// `tile` world units along u and v: (s, t) = (frac(u / tile),
+// frac(v / tile)) at MipLevelForFootprint's level. The material is copied.
+SurfaceRho MipmapRho(const Material& material, double tile);
 // Front-lit and back-lit panels.
 PreviewImage RenderSlab(const SlabParams& params,
                         const PreviewOptions& options);

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "fitting/lafortune_mip.h"
 #include "io/mask_io.h"
+#include "io/param_mipmap.h"
 #include "render/preview.h"
 #include "tests/cli_test_util.h"
 #include "tests/io_test_util.h"
@@ -88,9 +90,12 @@ TEST(Render, CylinderPanelsTurnTheWarpVerticalHorizontalDiagonal) {
   x_only.n = glm::dvec3(1.0);
   lobe.params.lobes = {x_only};
   const PreviewImage image = RenderCylinders(lobe, o);
+  EXPECT_EQ(image.panel_titles,
+            (std::vector<std::string>{"threads vertical", "threads horizontal",
+                                      "threads diagonal"}));
   double lit = 0.0;
   for (int panel = 0; panel < 3; ++panel) {
-    const double a = panel * 0.25 * kPi;
+    const double a = Radians(panel == 0 ? 0.0 : panel == 1 ? 90.0 : 45.0);
     for (int j = 0; j < o.size; ++j) {
       for (int i = 0; i < o.size; ++i) {
         glm::dvec3 p, wi;
@@ -112,6 +117,139 @@ TEST(Render, CylinderPanelsTurnTheWarpVerticalHorizontalDiagonal) {
     }
   }
   EXPECT_GT(lit, 1.0);  // the comparison is not between zeros
+}
+
+// A 2 x 2 level 0 of diffuse texels (red 0.1, 0.2 / 0.3, 0.4 by row) and a
+// 1 x 1 level 1 (red 0.25), written as a parameter mip map and loaded.
+Material DiffuseMipmap(const fs::path& dir) {
+  LafortuneMipResult r;
+  LafortuneLevel base, top;
+  base.width = base.height = 2;
+  for (int i = 0; i < 4; ++i) {
+    TexelFit t;
+    t.model.params.diffuse = glm::dvec3(0.1 * (i + 1), 0.05, 0.5);
+    base.texels.push_back(t);
+  }
+  top.width = top.height = 1;
+  top.texels.resize(1);
+  top.texels[0].model.params.diffuse = glm::dvec3(0.25, 0.05, 0.5);
+  r.levels = {base, top};
+  const std::string path = (dir / "diffuse.exr").string();
+  WriteParamMipmap(ToParamMipmap(r), path);
+  return Material::Load(path);
+}
+
+TEST(Render, MipLevelIsTheOneWhoseTexelsMatchTheFootprint) {
+  const double tile = 0.8, texel = tile / 64;  // 64 texels per tile
+  EXPECT_EQ(MipLevelForFootprint(texel, tile, 64, 7), 0);
+  EXPECT_EQ(MipLevelForFootprint(0.5 * texel, tile, 64, 7), 0);
+  EXPECT_EQ(MipLevelForFootprint(1.4 * texel, tile, 64, 7), 0);  // log2 0.49
+  EXPECT_EQ(MipLevelForFootprint(1.5 * texel, tile, 64, 7), 1);  // log2 0.58
+  EXPECT_EQ(MipLevelForFootprint(2 * texel, tile, 64, 7), 1);
+  EXPECT_EQ(MipLevelForFootprint(16 * texel, tile, 64, 7), 4);
+  EXPECT_EQ(MipLevelForFootprint(1e6 * texel, tile, 64, 7), 6);  // clamped
+  EXPECT_EQ(MipLevelForFootprint(1e6 * texel, tile, 64, 1), 0);  // one level
+  EXPECT_EQ(MipLevelForFootprint(std::nan(""), tile, 64, 7), 0);
+}
+
+TEST(Render, MipmapTextureRepeatsEveryTileAndReadsTheFootprintsLevel) {
+  const Material m = DiffuseMipmap(TestDir());
+  const double tile = 0.8;
+  const SurfaceRho rho = MipmapRho(m, tile);
+  const glm::dvec3 wi = glm::normalize(glm::dvec3(0.3, 0.1, 0.8));
+  const glm::dvec3 wo(0.0, 0.0, 1.0);
+  const double fine = 0.01;  // far below a texel (0.4): level 0
+  struct Case {
+    double u, v, footprint, red;
+  };
+  for (const Case& c :
+       {Case{0.1, 0.1, fine, 0.1}, Case{0.5, 0.1, fine, 0.2},
+        Case{0.1, 0.5, fine, 0.3}, Case{0.5, 0.5, fine, 0.4},
+        // Repeats, also towards negative coordinates.
+        Case{0.1 + 3 * tile, 0.1, fine, 0.1},
+        Case{0.5 - 2 * tile, 0.5 - tile, fine, 0.4}, Case{-0.1, 0.1, fine, 0.2},
+        // A footprint of two texels: level 1.
+        Case{0.1, 0.1, 0.8, 0.25}}) {
+    EXPECT_NEAR(rho(wi, wo, glm::dvec2(c.u, c.v), c.footprint).x, c.red * wi.z,
+                1e-7)
+        << c.u << "," << c.v << " footprint " << c.footprint;
+  }
+}
+
+// The cylinders of a mip map: each pixel shows the texel under its
+// texture coordinates (threads vertical: u = y along the axis, v = -asin(x)
+// around it; threads horizontal: u = asin(x), v = y) at its footprint's
+// level, lit like a diffuse surface.
+TEST(Render, MipmapCylindersMapTheTextureAlongTheWarp) {
+  const Material m = DiffuseMipmap(TestDir());
+  PreviewOptions o = Small();
+  // Texels of 0.1, the size of a pixel: grazing pixels read level 1.
+  const double tile = 0.2, pixel = 2.4 / o.size;
+  const PreviewImage image = RenderCylinders(MipmapRho(m, tile), o);
+  auto red = [&](double u, double v, double footprint) {
+    if (footprint * 2 / tile >= std::sqrt(2.0)) return 0.25;  // level 1
+    const int x = static_cast<int>(2 * (u / tile - std::floor(u / tile)));
+    const int y = static_cast<int>(2 * (v / tile - std::floor(v / tile)));
+    return 0.1 * (1 + x + 2 * y);
+  };
+  int level0 = 0, level1 = 0;
+  for (int panel = 0; panel < 2; ++panel) {
+    for (int j = 0; j < o.size; ++j) {
+      for (int i = 0; i < o.size; ++i) {
+        glm::dvec3 p, wi;
+        double e = 0.0, expected = 0.0;
+        if (CylinderPoint(o, i, j, &p, &wi, &e)) {
+          const double arc = std::asin(p.x), footprint = pixel / p.z;
+          const double r =
+              panel == 0 ? red(p.y, -arc, footprint) : red(arc, p.y, footprint);
+          (r == 0.25 ? level1 : level0)++;
+          const double cos_i = glm::dot(glm::dvec3(p.x, 0.0, p.z), wi);
+          if (cos_i > 0.0) expected = r * cos_i * e;
+        }
+        EXPECT_NEAR(image.At(panel * o.size + i, j).x, expected, 1e-6)
+            << "panel " << panel << " pixel " << i << "," << j;
+      }
+    }
+  }
+  EXPECT_GT(level0, 100);  // both levels are seen
+  EXPECT_GT(level1, 10);
+}
+
+// A mip map whose texels all hold one model renders like that model.
+TEST(Render, UniformMipmapRendersLikeItsModel) {
+  LafortuneModel model;
+  model.params.diffuse = glm::dvec3(0.2, 0.3, 0.4);
+  LafortuneLobe lobe;
+  lobe.cx = lobe.cy = glm::dvec3(-0.8);
+  lobe.cz = glm::dvec3(0.9);
+  lobe.n = glm::dvec3(12.0);
+  model.params.lobes = {lobe};
+  LafortuneMipResult r;
+  for (int size : {4, 2, 1}) {
+    LafortuneLevel level;
+    level.width = level.height = size;
+    level.texels.resize(size_t(size) * size);
+    for (TexelFit& t : level.texels) t.model = model;
+    r.levels.push_back(level);
+  }
+  const fs::path dir = TestDir();
+  WriteParamMipmap(ToParamMipmap(r), (dir / "uniform.exr").string());
+  const Material m = Material::Load((dir / "uniform.exr").string());
+  const PreviewOptions o = Small();
+  const PreviewImage textured = RenderCylinders(MipmapRho(m, 0.8), o);
+  const PreviewImage plain = RenderCylinders(model, o);
+  ASSERT_EQ(textured.pixels.size(), plain.pixels.size());
+  double lit = 0.0;
+  for (size_t k = 0; k < plain.pixels.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      // The mip map stores float parameters.
+      EXPECT_NEAR(textured.pixels[k][c], plain.pixels[k][c],
+                  1e-5 * (1.0 + plain.pixels[k][c]))
+          << k;
+    }
+    lit += plain.pixels[k].x;
+  }
+  EXPECT_GT(lit, 1.0);
 }
 
 TEST(Render, SlabPanelsShowTheBackdropThroughThinAndHideItBehindThick) {
@@ -222,6 +360,33 @@ TEST(RenderCli, HolesFileNeedsAMaskAndRendersThreeTilts) {
                  {"render", "--params", (dir / "holes.json").string(), "--out",
                   (dir / "x.exr").string()},
                  {"holes.json", "--mask"});
+}
+
+TEST(RenderCli, MipmapFileRendersTiledCylindersAndComparesWithAPreset) {
+  const fs::path dir = TestDir();
+  DiffuseMipmap(dir);
+  const std::string map = (dir / "diffuse.exr").string();
+  const RunResult r =
+      RunClothfit(dir, {"render", "--params", map, "--compare-preset",
+                        "linen_plain", "--tile", "0.5", "--size", "16", "--out",
+                        (dir / "m.exr").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  int w = 0, h = 0;
+  const std::vector<float> exr = ReadImage((dir / "m.exr").string(), &w, &h);
+  EXPECT_EQ(w, 48);
+  EXPECT_EQ(h, 32);
+  double top = 0.0;
+  for (size_t i = 0; i < exr.size() / 2; ++i) top += exr[i];
+  EXPECT_GT(top, 0.0);
+  ExpectBadInput(dir,
+                 {"render", "--params", map, "--tile", "0", "--out",
+                  (dir / "x.exr").string()},
+                 {"--tile"});
+  WriteText(dir / "broken.exr", "not an OpenEXR file");
+  ExpectBadInput(dir,
+                 {"render", "--params", (dir / "broken.exr").string(), "--out",
+                  (dir / "x.exr").string()},
+                 {"broken.exr"});
 }
 
 TEST(RenderCli, BadInputExitsTwoAndWritesNothing) {
