@@ -13,8 +13,9 @@ namespace {
 using fuzz::Require;
 
 // The images a manifest may list, written once per process beside it: the
-// kinds ReadImageStack reads (float EXR, 8-bit PNG; grey, rgb, rgba) and
-// one of another size.
+// kinds ReadImageStack reads (float EXR, 8-bit PNG; grey, rgb, rgba), one
+// of another size, and normal maps (any rgb image is one; zero.exr has a
+// zero normal).
 const std::string& StackDir() {
   static const std::string* const dir = [] {
     auto* made = new std::string(fuzz::ScratchDir() + "/stack");
@@ -25,12 +26,15 @@ const std::string& StackDir() {
                                0.7f, 0.8f, 0.9f, 0.0f, 1.0f, 0.0f, 0.5f, 1.0f};
     std::vector<float> grey = {0.0f, 0.25f, 0.5f, 1.0f};
     std::vector<float> big(3 * 2 * 3, 0.5f);
+    std::vector<float> zero = rgb;
+    zero[9] = zero[10] = zero[11] = 0.0f;
     std::filesystem::create_directories(folder);
     WriteImage(folder + "/img_000.exr", 2, 2, 3, false, true, rgb);
     WriteImage(folder + "/img_001.png", 2, 2, 3, false, false, rgb);
     WriteImage(folder + "/grey.png", 2, 2, 1, false, false, grey);
     WriteImage(folder + "/rgba.png", 2, 2, 3, true, false, rgba);
     WriteImage(folder + "/big.png", 3, 2, 3, false, false, big);
+    WriteImage(folder + "/zero.exr", 2, 2, 3, false, true, zero);
     return made;
   }();
   return *dir;

@@ -48,6 +48,9 @@ constexpr std::array<const char*, 10> kDirectionColumns = {
     "theta_i", "phi_i", "theta_o", "phi_o", "wi_x",
     "wi_y",    "wi_z",  "wo_x",    "wo_y",  "wo_z"};
 
+// The manifest's metadata key naming the per-texel normal image.
+constexpr const char* kNormalMapKey = "normal_map";
+
 // Distinguishes temporary files of concurrent writers within one process.
 std::atomic<unsigned> temp_counter{0};
 
@@ -66,6 +69,8 @@ struct StackEntry {
 struct Manifest {
   MeasurementTable table;  // metadata, quantity, direction columns; no rows
   std::vector<StackEntry> entries;
+  std::string normal_map;  // "# normal_map: FILE", as written; empty: none
+  int normal_map_line = 0;
 };
 
 // Parses a manifest. The `file` column is taken out here; the rest (metadata,
@@ -83,6 +88,8 @@ Manifest ParseManifest(std::string_view text, const std::string& name) {
   size_t header_fields = 0;
   size_t file_field = 0;
   std::map<int, std::string> files;  // line -> file name
+  std::string normal_map;
+  int normal_map_line = 0;
   size_t start = 0;
   while (start <= body.size()) {
     size_t end = body.find('\n', start);
@@ -93,6 +100,28 @@ Manifest ParseManifest(std::string_view text, const std::string& name) {
     if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
     const std::string_view trimmed = Trim(content);
     if (trimmed.empty() || trimmed.front() == '#') {
+      // Before the header, '#' lines are metadata (as in a table); the
+      // table parser reads all but normal_map, which names a file.
+      const size_t colon = trimmed.find(':');
+      if (header_line == 0 && !trimmed.empty() &&
+          colon != std::string_view::npos &&
+          Lower(Trim(trimmed.substr(1, colon - 1))) == kNormalMapKey) {
+        if (normal_map_line > 0) {
+          Fail(name, line, 0,
+               std::string("metadata '") + kNormalMapKey +
+                   "': given again (first on line " +
+                   std::to_string(normal_map_line) + ")");
+        }
+        normal_map = Trim(trimmed.substr(colon + 1));
+        normal_map_line = line;
+        if (normal_map.empty()) {
+          Fail(
+              name, line, 0,
+              std::string("metadata '") + kNormalMapKey + "': empty file name");
+        }
+        substitute += '\n';  // keeps the line numbers
+        continue;
+      }
       substitute.append(content);
       substitute += '\n';
       continue;
@@ -171,15 +200,18 @@ Manifest ParseManifest(std::string_view text, const std::string& name) {
   }
   manifest.table.rows.clear();
   manifest.table.has_weight = false;
+  manifest.normal_map = std::move(normal_map);
+  manifest.normal_map_line = normal_map_line;
   return manifest;
 }
 
 // Pixels of one image, as floats.
 struct Image {
   int width = 0, height = 0, channels = 0;
-  int alpha = -1;             // alpha channel index, -1 when none
-  std::vector<int> colour;    // 1 (grey) or 3 (r, g, b) indices
-  std::vector<float> pixels;  // channels per pixel, row-major
+  int alpha = -1;               // alpha channel index, -1 when none
+  std::vector<int> colour;      // 1 (grey) or 3 (r, g, b) indices
+  std::vector<float> pixels;    // channels per pixel, row-major
+  bool integer_pixels = false;  // stored as integers (read scaled to [0, 1])
 };
 
 Image ReadImage(const std::string& path, const std::string& manifest,
@@ -213,6 +245,7 @@ Image ReadImage(const std::string& path, const std::string& manifest,
   image.width = spec.width;
   image.height = spec.height;
   image.channels = spec.nchannels;
+  image.integer_pixels = !spec.format.is_floating_point();
   if (image.width < 1 || image.height < 1 || spec.depth > 1 ||
       int64_t{image.width} * image.height > kMaxPixels) {
     Fail(path, 0, 0,
@@ -334,6 +367,61 @@ std::string PairLabel(size_t pair, const TableRow& row) {
   return buffer;
 }
 
+// ReadImage with every failure as an InputError naming the image.
+Image ReadListedImage(const std::string& path, const std::string& manifest,
+                      int line) {
+  try {
+    return ReadImage(path, manifest, line);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    Fail(path, 0, 0, "out of memory reading the image");
+  } catch (const std::exception& error) {
+    Fail(path, 0, 0, std::string("cannot read image: ") + error.what());
+  }
+}
+
+// The unit normal of every pixel of a normal map: (x, y, z) in the surface
+// frame from its three colour channels, stored as they are in a float image
+// and as 2 v - 1 (v in [0, 1]) in an integer one; alpha is ignored.
+std::vector<glm::dvec3> NormalsOf(const Image& image, const std::string& path,
+                                  const std::string& manifest, int line) {
+  const std::string listed =
+      " (normal map of " + FormatLocation(manifest, line, 0) + ")";
+  if (image.colour.size() != 3) {
+    Fail(path, 0, 0,
+         "a normal map needs 3 colour channels (x, y, z), got " +
+             std::to_string(image.colour.size()) + listed);
+  }
+  std::vector<glm::dvec3> normals;
+  normals.reserve(static_cast<size_t>(image.width) * image.height);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const float* pixel =
+          image.pixels.data() +
+          (static_cast<size_t>(y) * image.width + x) * image.channels;
+      glm::dvec3 n(pixel[image.colour[0]], pixel[image.colour[1]],
+                   pixel[image.colour[2]]);
+      if (image.integer_pixels) n = 2.0 * n - 1.0;
+      const bool finite =
+          std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      const double scale =
+          finite ? std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)})
+                 : 0.0;
+      if (!(scale > 0.0)) {
+        char where[64];
+        std::snprintf(where, sizeof(where), "pixel (%d, %d): ", x, y);
+        Fail(path, 0, 0,
+             where + std::string(finite ? "zero" : "non-finite") + " normal (" +
+                 FormatNumber(n.x) + ", " + FormatNumber(n.y) + ", " +
+                 FormatNumber(n.z) + ")" + listed);
+      }
+      normals.push_back(glm::normalize(n / scale));
+    }
+  }
+  return normals;
+}
+
 }  // namespace
 
 MeasurementTable ReadImageStack(const std::string& manifest_path,
@@ -352,24 +440,29 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
   table.channels = 1;
 
   const fs::path folder = fs::path(manifest_path).parent_path();
+  auto resolve = [&folder](const std::string& name) {
+    const fs::path file(name);
+    return (file.is_absolute() || folder.empty() ? file : folder / file)
+        .string();
+  };
   const int stride = options.stride;
   int width = 0;
   int height = 0;
   std::string first_image;
+  std::vector<glm::dvec3> normals;  // per pixel, from the normal map
+  if (!manifest.normal_map.empty()) {
+    first_image = resolve(manifest.normal_map);
+    const Image image =
+        ReadListedImage(first_image, manifest_path, manifest.normal_map_line);
+    width = image.width;
+    height = image.height;
+    normals =
+        NormalsOf(image, first_image, manifest_path, manifest.normal_map_line);
+    table.has_normal = true;
+  }
   for (const StackEntry& entry : manifest.entries) {
-    const fs::path file(entry.file);
-    const std::string path =
-        (file.is_absolute() || folder.empty() ? file : folder / file).string();
-    Image image;
-    try {
-      image = ReadImage(path, manifest_path, entry.line);
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::bad_alloc&) {
-      Fail(path, 0, 0, "out of memory reading the image");
-    } catch (const std::exception& error) {
-      Fail(path, 0, 0, std::string("cannot read image: ") + error.what());
-    }
+    const std::string path = resolve(entry.file);
+    const Image image = ReadListedImage(path, manifest_path, entry.line);
     if (first_image.empty()) {
       width = image.width;
       height = image.height;
@@ -387,9 +480,8 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
 
     for (int y = 0; y < height; y += stride) {
       for (int x = 0; x < width; x += stride) {
-        const float* pixel =
-            image.pixels.data() +
-            (static_cast<size_t>(y) * width + x) * image.channels;
+        const size_t texel = static_cast<size_t>(y) * width + x;
+        const float* pixel = image.pixels.data() + texel * image.channels;
         TableRow row;
         row.wi = entry.wi;
         row.wo = entry.wo;
@@ -400,6 +492,7 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
                                  pixel[image.colour[2]]);
         }
         if (image.alpha >= 0) row.alpha = pixel[image.alpha];
+        if (!normals.empty()) row.normal = normals[texel];
         row.s = x;
         row.t = y;
         row.source_line = entry.line;
@@ -477,6 +570,27 @@ void WriteImageStack(const MeasurementTable& table,
     }
   }
 
+  // One normal per texel: every pair's row of a texel must agree.
+  std::vector<glm::dvec3> normals;
+  if (table.has_normal) {
+    normals.resize(texels);
+    for (size_t cell = 0; cell < texels; ++cell) {
+      const size_t first = grid[0][cell];
+      normals[cell] = table.rows[first].normal;
+      for (size_t pair = 1; pair < pairs; ++pair) {
+        const size_t other = grid[pair][cell];
+        if (glm::length(table.rows[other].normal - normals[cell]) > 1e-9) {
+          Fail(name, 0, 0,
+               "texel (" + std::to_string(cell % width) + ", " +
+                   std::to_string(cell / width) + ") has different normals " +
+                   "in rows " + std::to_string(first + 1) + " and " +
+                   std::to_string(other + 1) +
+                   "; an image stack holds one normal per texel");
+        }
+      }
+    }
+  }
+
   const fs::path manifest(manifest_path);
   const std::string stem = manifest.stem().string();
   if (stem.empty() || stem.find_first_of(",\n\r") != std::string::npos) {
@@ -492,11 +606,27 @@ void WriteImageStack(const MeasurementTable& table,
   std::string text = "# clothfit-stack 1\n";
   text += std::string("# quantity: ") + QuantityName(table.quantity) + "\n";
   text += "# units: degrees\n";
+  if (!normals.empty()) {
+    // The normal map: raw in a float image, 0.5 (n + 1) in an 8-bit one.
+    const std::string file = stem + "_normal" + ext;
+    std::vector<float> pixels;
+    pixels.reserve(texels * 3);
+    for (const glm::dvec3& n : normals) {
+      for (int c = 0; c < 3; ++c) {
+        pixels.push_back(
+            static_cast<float>(float_pixels ? n[c] : 0.5 * (n[c] + 1.0)));
+      }
+    }
+    WriteImage((folder.empty() ? fs::path(file) : folder / file).string(),
+               width, height, 3, false, float_pixels, pixels);
+    text += std::string("# ") + kNormalMapKey + ": " + file + "\n";
+  }
   for (const auto& [key, value] : table.metadata) {
     std::string key_name = Lower(Trim(OneLine(key)));
     std::replace(key_name.begin(), key_name.end(), ':', '_');
     if (key_name.empty() || key_name == "quantity" || key_name == "units" ||
-        key_name == "clothfit-table" || key_name == "clothfit-stack") {
+        key_name == "clothfit-table" || key_name == "clothfit-stack" ||
+        key_name == kNormalMapKey) {
       continue;
     }
     text += "# " + key_name + ": " + OneLine(value) + "\n";

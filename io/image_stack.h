@@ -13,6 +13,14 @@
 //   30,0,45,180,img_000.exr
 // The image's alpha channel, when present, is the per-view coverage: it is
 // stored in TableRow::alpha (1 without alpha).
+// Per-texel normals (Daubert et al. 2001, Section 3: the frame of a
+// spatially varying fit) come from a normal map named by a metadata line
+//   # normal_map: normals.exr
+// an image of the stack's size whose three colour channels hold each
+// pixel's normal (x, y, z) in the surface frame: as stored in a float image
+// (EXR, TIFF), as 2 v - 1 in an integer one (PNG; v in [0, 1]); normalised
+// on read, zero or non-finite normals are an error; alpha is ignored. The
+// table then has has_normal set.
 #pragma once
 
 #include <string>
@@ -35,7 +43,9 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
 // Writes a stack from a spatially varying table whose rows cover a full
 // width x height grid of (s, t) for each distinct (wi, wo) pair: one
 // image per pair (format from `extension`, e.g. ".exr" or ".png"; alpha
-// written when `with_alpha`), and the manifest. Atomic per file.
+// written when `with_alpha`), with has_normal a normal map (STEM_normal.EXT;
+// every pair's rows of a texel must hold the same normal), and the
+// manifest. Atomic per file.
 void WriteImageStack(const MeasurementTable& table,
                      const std::string& manifest_path,
                      const std::string& extension, bool with_alpha);

@@ -412,6 +412,16 @@ TEST_F(BadInputTest, ImageStacksThroughFit) {
           {"non-UTF-8 file name",
            h + "1,2,3,4,n\xff.exr\n",
            {"cannot read image", "bad_stack.csv:2"}},
+          {"missing normal map",
+           "# normal_map: none_n.exr\n" + h + "1,2,3,4,stack_0000.exr\n",
+           {"none_n.exr", "No such file", "bad_stack.csv:1"}},
+          {"normal map not an image",
+           "# normal_map: text.exr\n" + h + "1,2,3,4,stack_0000.exr\n",
+           {"text.exr", "cannot read image", "bad_stack.csv:1"}},
+          {"normal map named twice",
+           "# normal_map: a.exr\n# normal_map: a.exr\n" + h +
+               "1,2,3,4,stack_0000.exr\n",
+           {"bad_stack.csv:2", "normal_map", "first on line 1"}},
       },
       "bad_stack.csv");
 }

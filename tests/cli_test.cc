@@ -497,9 +497,8 @@ TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
   EXPECT_NEAR(p.gamma_s_deg, 6.0, 0.05 * 6.0);
   EXPECT_NEAR(p.gamma_v_deg, 14.0, 0.05 * 14.0);
   EXPECT_NEAR(p.albedo.x, 0.3, 0.03 * 0.3);
-  for (const char* key :
-       {"\"stddev\"", "\"relative_rms\"", "\"iterations\"",
-        "\"termination\"", "\"gamma_s_deg\""}) {
+  for (const char* key : {"\"stddev\"", "\"relative_rms\"", "\"iterations\"",
+                          "\"termination\"", "\"gamma_s_deg\""}) {
     EXPECT_NE(fit.fit_json.find(key), std::string::npos) << key;
   }
   // The wall time is in the summary, not the file (determinism, issue 8).
@@ -770,6 +769,35 @@ TEST(CliTest, LafortuneFromImageStack) {
   ASSERT_EQ(m.levels.size(), 1u);  // no --mip: level 0 only
   EXPECT_EQ(m.levels[0].width, 2);
   EXPECT_EQ(m.levels[0].height, 2);
+
+  // The stack carries the texels' normals (its normal map): the fit holds
+  // the same per-texel frames as a fit of the same gonio's table.
+  EXPECT_TRUE(fs::exists(dir / "stack_normal.exr"));
+  const std::string table = (dir / "t.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--gonio", "satin", "--texels", "2",
+                              "--directions", "2", "--out", table})
+                .status,
+            0);
+  const std::string from_table = (dir / "t.exr").string();
+  ASSERT_EQ(RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                              "--lobes", "1", "--out", from_table})
+                .status,
+            0);
+  const ParamMipmap t = ReadParamMipmap(from_table);
+  ASSERT_EQ(t.channels, m.channels);
+  double tilt = 0.0;
+  for (const char* axis : {"normal.X", "normal.Y", "normal.Z"}) {
+    const size_t c = static_cast<size_t>(
+        std::find(m.channels.begin(), m.channels.end(), axis) -
+        m.channels.begin());
+    ASSERT_LT(c, m.channels.size()) << axis;
+    for (size_t i = 0; i < 4; ++i) {
+      EXPECT_NEAR(m.levels[0].data[c][i], t.levels[0].data[c][i], 1e-6)
+          << axis << " texel " << i;
+      if (axis[7] != 'Z') tilt += std::abs(t.levels[0].data[c][i]);
+    }
+  }
+  EXPECT_GT(tilt, 1e-3);  // the gonio's normals are not all +z
 }
 
 TEST(CliTest, LafortuneSingleTableFitThenEval) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/geometric.hpp>
 #include <initializer_list>
 #include <random>
 #include <string>
@@ -252,6 +253,61 @@ TEST(ImageStackTest, HandWrittenManifest) {
   EXPECT_EQ(back.rows[4].source_line, 8);
 }
 
+// StackTable with a normal per texel, tilted differently at every texel.
+MeasurementTable WithNormals(MeasurementTable table) {
+  table.has_normal = true;
+  for (TableRow& row : table.rows) {
+    row.normal = glm::normalize(glm::dvec3(0.3 * std::sin(row.s + 1.0),
+                                           -0.2 * std::cos(2.0 * row.t), 1.0));
+  }
+  return table;
+}
+
+TEST(ImageStackTest, NormalMapCarriesEachTexelsNormal) {
+  const fs::path dir = TestDir();
+  const MeasurementTable table = WithNormals(StackTable(3, 5, 4, 3, false));
+  struct Format {
+    const char* ext;
+    double tolerance;  // float; 8 bit as 0.5 (n + 1)
+  };
+  for (const Format& f : {Format{".exr", 1e-7}, Format{".png", 0.006}}) {
+    const std::string manifest =
+        (dir / (std::string("n") + (f.ext + 1) + ".csv")).string();
+    WriteImageStack(table, manifest, f.ext, false);
+    const std::string normal_file =
+        std::string("n") + (f.ext + 1) + "_normal" + f.ext;
+    EXPECT_TRUE(fs::exists(dir / normal_file)) << normal_file;
+    EXPECT_NE(
+        ReadFileToString(manifest).find("# normal_map: " + normal_file + "\n"),
+        std::string::npos);
+    const MeasurementTable back = ReadImageStack(manifest);
+    EXPECT_TRUE(back.has_normal) << f.ext;
+    EXPECT_FALSE(back.Meta("normal_map").has_value());
+    ASSERT_EQ(back.rows.size(), table.rows.size());
+    for (size_t i = 0; i < back.rows.size(); ++i) {
+      ExpectNear(back.rows[i].normal, table.rows[i].normal, f.tolerance);
+      EXPECT_NEAR(glm::length(back.rows[i].normal), 1.0, 1e-12);
+    }
+    // Stride keeps each kept pixel's normal.
+    ReadStackOptions options;
+    options.stride = 2;
+    const MeasurementTable strided = ReadImageStack(manifest, options);
+    for (const TableRow& row : strided.rows) {
+      ExpectNear(row.normal, table.rows[size_t(row.t) * 5 + row.s].normal,
+                 f.tolerance);
+    }
+    // Through CSV the normals become columns.
+    EXPECT_TRUE(ParseTable(FormatTable(back), "mem").table.has_normal);
+  }
+  // Without a normal map: the surface normal, no columns.
+  const std::string plain = (dir / "plain.csv").string();
+  WriteImageStack(StackTable(2, 3, 2, 3, false), plain, ".exr", false);
+  EXPECT_FALSE(fs::exists(dir / "plain_normal.exr"));
+  const MeasurementTable back = ReadImageStack(plain);
+  EXPECT_FALSE(back.has_normal);
+  EXPECT_EQ(back.rows[0].normal, glm::dvec3(0.0, 0.0, 1.0));
+}
+
 // Writes a 5 x 4 rgba EXR stack of three images as dir/stack.csv.
 std::string WriteSampleStack(const fs::path& dir) {
   const std::string manifest = (dir / "stack.csv").string();
@@ -348,6 +404,64 @@ TEST(ImageStackErrorTest, BadManifest) {
             {manifest + ":1:", "units"});
   ExpectHas(ErrorOf([&] { ReadImageStack((dir / "absent.csv").string()); }),
             {(dir / "absent.csv").string(), "cannot read"});
+}
+
+TEST(ImageStackErrorTest, BadNormalMap) {
+  const fs::path dir = TestDir();
+  const std::string manifest = WriteSampleStack(dir);
+  const std::string rows = ReadFileToString(manifest);
+  // A manifest with `lines` before the stack's own lines.
+  auto error_for = [&](const std::string& lines) {
+    WriteText(manifest, lines + rows);
+    return ErrorOf([&] { ReadImageStack(manifest); });
+  };
+  auto write_exr = [&](const std::string& name, int width, int height,
+                       int channels, const std::vector<float>& pixels) {
+    WriteImage((dir / name).string(), width, height, channels, false, true,
+               pixels);
+  };
+  std::vector<float> up(5 * 4 * 3, 0.0f);
+  for (size_t i = 2; i < up.size(); i += 3) up[i] = 1.0f;
+  write_exr("up.exr", 5, 4, 3, up);
+  ASSERT_NO_THROW({
+    WriteText(manifest, "# normal_map: up.exr\n" + rows);
+    EXPECT_TRUE(ReadImageStack(manifest).has_normal);
+  });
+
+  ExpectHas(error_for("# normal_map: none.exr\n"),
+            {(dir / "none.exr").string(), "cannot read", manifest + ":1"});
+  write_exr("small.exr", 3, 2, 3, std::vector<float>(3 * 2 * 3, 1.0f));
+  ExpectHas(error_for("# normal_map: small.exr\n"),
+            {(dir / "stack_0000.exr").string(), "5 x 4",
+             (dir / "small.exr").string(), "3 x 2"});
+  write_exr("grey.exr", 5, 4, 1, std::vector<float>(5 * 4, 1.0f));
+  ExpectHas(error_for("# normal_map: grey.exr\n"),
+            {(dir / "grey.exr").string(), "3 colour channels", "got 1",
+             manifest + ":1"});
+  std::vector<float> zero = up;
+  zero[(2 * 5 + 3) * 3 + 2] = 0.0f;  // pixel (3, 2)
+  write_exr("zero.exr", 5, 4, 3, zero);
+  ExpectHas(error_for("# note: x\n# normal_map: zero.exr\n"),
+            {(dir / "zero.exr").string(), "pixel (3, 2)", "zero normal",
+             manifest + ":2"});
+  std::vector<float> nan = up;
+  nan[3] = std::nanf("");  // pixel (1, 0)
+  write_exr("nan.exr", 5, 4, 3, nan);
+  ExpectHas(error_for("# normal_map: nan.exr\n"),
+            {(dir / "nan.exr").string(), "pixel (1, 0)", "non-finite"});
+  ExpectHas(error_for("# normal_map:  \n"),
+            {manifest + ":1:", "'normal_map'", "empty file name"});
+  ExpectHas(error_for("# normal_map: up.exr\n# Normal_Map: up.exr\n"),
+            {manifest + ":2:", "'normal_map'", "first on line 1"});
+
+  // The writer needs one normal per texel.
+  MeasurementTable table = WithNormals(StackTable(2, 3, 2, 3, false));
+  table.rows[6 + 4].normal = glm::dvec3(0.0, 0.0, 1.0);  // pair 1, (1, 1)
+  ExpectHas(ErrorOf([&] {
+              WriteImageStack(table, (dir / "w.csv").string(), ".exr", false);
+            }),
+            {(dir / "w.csv").string(), "texel (1, 1)", "rows 5 and 11",
+             "one normal per texel"});
 }
 
 TEST(ImageStackErrorTest, WriteNeedsFullGrids) {
