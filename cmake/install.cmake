@@ -16,7 +16,7 @@ set(CLOTHFIT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/clothfit)
 foreach(dir models io data_synthetic holes fitting charts api render)
   install(DIRECTORY ${CMAKE_SOURCE_DIR}/${dir}/
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/clothfit/${dir}
-          FILES_MATCHING PATTERN "*.h")
+          FILES_MATCHING PATTERN "*.h" PATTERN "*_internal.h" EXCLUDE)
 endforeach()
 
 target_include_directories(clothfit_models INTERFACE

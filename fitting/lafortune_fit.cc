@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "fitting/ceres_linear_solver_internal.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
@@ -133,11 +134,7 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
     problem.SetParameterUpperBound(x, 4 + 4 * k, kMaxN);
   }
   ceres::Solver::Options options;
-  bool lapack = false;
-  options.linear_solver_type = static_cast<ceres::LinearSolverType>(
-      CeresLinearSolverType(fit.linear_solver, &lapack));
-  options.dense_linear_algebra_library_type =
-      lapack ? ceres::LAPACK : ceres::EIGEN;
+  SetCeresLinearSolver(fit.linear_solver, &options);
   options.max_num_iterations = fit.max_iterations;
   options.function_tolerance = fit.function_tolerance;
   options.num_threads = 1;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 
+#include "fitting/ceres_linear_solver_internal.h"
 #include "io/input_error.h"
 
 namespace clothfit {
@@ -299,11 +300,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     BuiltProblem built;
     Build(lsq, options, &x, &built);
     ceres::Solver::Options solver_options;
-    bool lapack = false;
-    solver_options.linear_solver_type = static_cast<ceres::LinearSolverType>(
-        CeresLinearSolverType(options.linear_solver, &lapack));
-    solver_options.dense_linear_algebra_library_type =
-        lapack ? ceres::LAPACK : ceres::EIGEN;
+    SetCeresLinearSolver(options.linear_solver, &solver_options);
     solver_options.max_num_iterations = options.max_iterations;
     solver_options.num_threads = options.num_threads;
     solver_options.function_tolerance = 1e-6;

@@ -2,6 +2,8 @@
 
 #include <ceres/types.h>
 
+#include "fitting/ceres_linear_solver_internal.h"
+
 namespace clothfit {
 namespace {
 
@@ -56,10 +58,12 @@ std::string LinearSolverNames() {
   return names;
 }
 
-int CeresLinearSolverType(LinearSolver solver, bool* lapack) {
+void SetCeresLinearSolver(LinearSolver solver,
+                          ceres::Solver::Options* options) {
   const Entry& e = Find(solver);
-  *lapack = e.lapack;
-  return static_cast<int>(e.type);
+  options->linear_solver_type = e.type;
+  options->dense_linear_algebra_library_type =
+      e.lapack ? ceres::LAPACK : ceres::EIGEN;
 }
 
 }  // namespace clothfit

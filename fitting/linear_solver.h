@@ -1,6 +1,7 @@
 // The linear solver of the Levenberg-Marquardt steps (issue 7): a knob of
-// every fit, swept by `clothfit bench`. Our own enum, mapped to Ceres in
-// fitting/linear_solver.cc, so that Ceres stays out of the public headers.
+// every fit, swept by `clothfit bench`. Our own enum, mapped to Ceres by
+// fitting/ceres_linear_solver_internal.h, so that Ceres stays out of the
+// public headers.
 // Only the solvers that make sense for the fits' small dense problems (at
 // most a few dozen parameters, thousands of residuals): Ceres' dense QR of
 // the Jacobian and dense Cholesky of the normal equations, each with
@@ -32,10 +33,5 @@ bool ParseLinearSolver(const std::string& name, LinearSolver* solver);
 
 // The names, comma-separated, for messages and --help.
 std::string LinearSolverNames();
-
-// The Ceres solver type (ceres::LinearSolverType) of `solver`, as an int so
-// that Ceres stays out of this header; *lapack receives whether Ceres'
-// dense linear algebra should be LAPACK instead of Eigen. For fitting/*.cc.
-int CeresLinearSolverType(LinearSolver solver, bool* lapack);
 
 }  // namespace clothfit
