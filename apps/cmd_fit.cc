@@ -1,6 +1,7 @@
 // clothfit fit: fits a model's parameters to a measurement table (SPEC §5).
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -75,6 +76,10 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
   ReadTableOptions read_options;
   read_options.skip_invalid = args.Has("skip-invalid");
   ReadTableResult read = ReadTable(path, read_options);
+  if (std::none_of(read.table.rows.begin(), read.table.rows.end(),
+                   [](const TableRow& row) { return row.weight > 0.0; })) {
+    throw InputError(path + ": every row has weight 0: nothing to fit");
+  }
   if (read.skipped > 0) {
     std::cerr << "warning: skipped " << read.skipped
               << " invalid row(s); first: " << read.first_skip_reason << "\n";
@@ -84,6 +89,26 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
 
 MeasurementTable ReadDataOption(const CommandArgs& args) {
   return ReadTableOption(args, args.Required("data"));
+}
+
+int CountNotReflection(const MeasurementTable& table, const std::string& source,
+                       const std::string& model) {
+  const size_t count = static_cast<size_t>(
+      std::count_if(table.rows.begin(), table.rows.end(),
+                    [](const TableRow& row) { return !IsReflectionRow(row); }));
+  if (count > 0 && count == table.rows.size()) {
+    throw InputError(source +
+                     ": no row has both the light and the view above the "
+                     "surface (wi.z and wo.z > 0); the " +
+                     model + " model is reflection only");
+  }
+  if (count > 0) {
+    std::cerr << "warning: " << count
+              << " row(s) are not reflection (wi.z or wo.z <= 0) and are not "
+                 "used: the "
+              << model << " model is reflection only\n";
+  }
+  return static_cast<int>(count);
 }
 
 int FinishFit(const FitReport& report, const std::vector<double>& truth,
@@ -273,12 +298,14 @@ int RunFit(int argc, char** argv) {
           ClothParameterValues(std::get<ClothParams>(truth->params), layout);
     }
     if (tolerance) {
+      CountNotReflection(table, args.Get("data"), "cloth");
       const ClothSelection sel =
           SelectClothModel(table, layout, options, *tolerance);
       // The chosen weave may have fewer samples: no per-entry truth column.
       return Finish(args, sel.fit.params, sel.fit.report, truth_values,
                     &sel.report);
     }
+    CountNotReflection(table, args.Get("data"), "cloth");
     const ClothFitResult r = FitCloth(table, layout, options);
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }

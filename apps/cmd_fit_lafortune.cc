@@ -109,10 +109,11 @@ int RunFitLafortune(int argc, char** argv) {
       args.Fail("option '--tolerance': must be > 0");
   }
   MeasurementTable table;
+  const std::string source = args.Get(args.Has("stack") ? "stack" : "data");
   if (args.Has("stack")) {
-    table = ReadImageStack(args.Get("stack"));
+    table = ReadImageStack(source);
   } else {
-    table = ReadTableOption(args, args.Get("data"));
+    table = ReadTableOption(args, source);
   }
 
   if (!table.has_texels) {  // one model for the whole table
@@ -124,16 +125,8 @@ int RunFitLafortune(int argc, char** argv) {
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
     const ViewIndex views(table);
     std::vector<size_t> rows(table.rows.size());
-    int skipped = 0;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      rows[i] = i;
-      skipped += !(table.rows[i].wi.z > 0.0 && table.rows[i].wo.z > 0.0);
-    }
-    if (skipped > 0) {
-      std::cerr << "warning: " << skipped
-                << " row(s) are not reflection (wi.z or wo.z <= 0) and are "
-                   "not used\n";
-    }
+    for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+    const int skipped = CountNotReflection(table, source, "lafortune");
     const TexelFit best = FitTexelRows(table, views, rows, options);
     std::printf(
         "lafortune fit: %s, %d lobe(s), %d alternation(s), %d "

@@ -64,6 +64,12 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
 // The table of --data, with --skip-invalid (a warning says how many rows
 // were dropped).
 MeasurementTable ReadDataOption(const CommandArgs& args);
+// For a reflection-only model (`model`: "cloth", "lafortune"): the number
+// of rows of `table` (read from `source`) with the light or the view below
+// the surface, which the fit leaves out; a warning on stderr says how many.
+// Throws InputError naming `source` when no row is left.
+int CountNotReflection(const MeasurementTable& table, const std::string& source,
+                       const std::string& model);
 
 // The end of a fit command: prints `preface` and the report's summary
 // (with `truth`, may be empty), and when the fit is usable calls `write`

@@ -58,7 +58,7 @@ RowSamples ComputeRowSamples(const ClothParams& layout,
   RowSamples out;
   out.per_thread.resize(layout.threads.size());
   out.fresnel.resize(layout.threads.size());
-  if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) return out;  // reflection only
+  if (!IsReflectionRow(row)) return out;  // reflection only
   for (size_t j = 0; j < layout.threads.size(); ++j) {
     const ClothThread& th = layout.threads[j];
     for (double offset : th.offsets_deg) {
@@ -343,6 +343,28 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
         "cloth fit: the initial parameters need 1 to 3 threads, got " +
         std::to_string(init.threads.size()));
   }
+  // The cloth model is reflection only (SPEC §3.2): a row with the light or
+  // the view below the surface tells nothing about it. Such rows are left
+  // out and counted, not fitted as zeros.
+  const size_t not_reflection = static_cast<size_t>(
+      std::count_if(table.rows.begin(), table.rows.end(),
+                    [](const TableRow& row) { return !IsReflectionRow(row); }));
+  if (not_reflection == table.rows.size()) {
+    throw InputError(
+        "cloth fit: no row has both the light and the view above the "
+        "surface (the cloth model is reflection only)");
+  }
+  if (not_reflection > 0) {
+    MeasurementTable reflection = table;
+    reflection.rows.erase(
+        std::remove_if(
+            reflection.rows.begin(), reflection.rows.end(),
+            [](const TableRow& row) { return !IsReflectionRow(row); }),
+        reflection.rows.end());
+    ClothFitResult result = FitCloth(reflection, init, options);
+    result.report.rows_not_used = static_cast<int>(not_reflection);
+    return result;
+  }
   const size_t n = init.threads.size();
   LeastSquaresProblem lsq;
   lsq.specs = ClothSpecs(init);
@@ -513,6 +535,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     for (ClothThread& th : result.params.threads) {
       th.params.albedo = glm::dvec3(th.params.albedo.x);
     }
+    ReportChannelsFollowRed("albedo", &result.report);
   }
   result.report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

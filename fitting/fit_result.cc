@@ -1,16 +1,34 @@
 #include "fitting/fit_result.h"
 
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "io/text_util.h"
+
 namespace clothfit {
+
+void ReportChannelsFollowRed(const std::string& name, FitReport* report) {
+  // Parameter name without its last two characters ("_r") -> red value.
+  std::map<std::string, double> red;
+  for (const ParameterReport& p : report->parameters) {
+    if (text_util::EndsWith(p.name, name + "_r")) {
+      red[p.name.substr(0, p.name.size() - 2)] = p.value;
+    }
+  }
+  for (ParameterReport& p : report->parameters) {
+    if (text_util::EndsWith(p.name, name + "_g") ||
+        text_util::EndsWith(p.name, name + "_b")) {
+      const auto it = red.find(p.name.substr(0, p.name.size() - 2));
+      if (it != red.end()) p.value = it->second;
+    }
+  }
+}
 
 glm::dvec3 OneChannelRgb(const std::string& name, const glm::dvec3& rgb,
                          FitReport* report) {
-  for (ParameterReport& p : report->parameters) {
-    if (p.name == name + "_g" || p.name == name + "_b") p.value = rgb.x;
-  }
+  ReportChannelsFollowRed(name, report);
   return glm::dvec3(rgb.x);
 }
 
@@ -25,6 +43,7 @@ std::string FitReportJson(const FitReport& r) {
   j["relative_rms"] = r.relative_rms;
   j["iterations"] = r.iterations;
   j["residuals"] = r.residuals;
+  if (r.rows_not_used > 0) j["rows_not_used"] = r.rows_not_used;
   j["starts"] = r.starts;
   nlohmann::ordered_json values = nlohmann::ordered_json::object();
   for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
@@ -61,6 +80,12 @@ std::string FitReportText(const FitReport& r,
                 "cost %.6g, rms %.4g, relative rms %.4g over %d residuals\n",
                 r.final_cost, r.rms, r.relative_rms, r.residuals);
   out << line;
+  if (r.rows_not_used > 0) {
+    std::snprintf(line, sizeof(line),
+                  "%d table row(s) not used (the model cannot explain them)\n",
+                  r.rows_not_used);
+    out << line;
+  }
   std::snprintf(line, sizeof(line), "%-28s %14s %12s%s\n", "parameter", "value",
                 "stddev", truth.empty() ? "" : "           true");
   out << line;

@@ -49,12 +49,20 @@ struct FitReport {
   // the parameter file (same inputs give bit-identical files, issue 8).
   double seconds = 0.0;
   int residuals = 0;
+  // Table rows the model cannot explain, left out of the fit (a
+  // reflection-only model's transmission rows); 0 for most fits.
+  int rows_not_used = 0;
   int starts = 1;  // multi-start: how many solves were run
   std::vector<ParameterReport> parameters;
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".
   std::string identifiability;
 };
+
+// One-channel tables fit one value of an rgb parameter: every reported
+// parameter named PREFIX`name`_g or PREFIX`name`_b takes the value of
+// PREFIX`name`_r (e.g. "threads[1].albedo_g" that of "threads[1].albedo_r").
+void ReportChannelsFollowRed(const std::string& name, FitReport* report);
 
 // One-channel tables fit one value of an rgb parameter: returns
 // (rgb.x, rgb.x, rgb.x) and reports that value for `name`_g and `name`_b.

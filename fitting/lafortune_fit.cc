@@ -306,7 +306,7 @@ TexelSamples CollectSamples(const MeasurementTable& table,
   int dropped = 0;
   for (size_t index : rows) {
     const TableRow& row = table.rows[index];
-    if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) {
+    if (!IsReflectionRow(row)) {
       ++dropped;
       continue;
     }
@@ -373,7 +373,7 @@ void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
   std::vector<int> view_n(n_views, 0);
   for (size_t index : rows) {
     const TableRow& row = table.rows[index];
-    if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) continue;
+    if (!IsReflectionRow(row)) continue;
     const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
     const glm::dvec3 y = row.value * to_rho;
     const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]

@@ -153,7 +153,11 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
       }
       if (sv.size() < n) {  // fewer residuals than free parameters
         for (int c = 0; c < n; ++c) {
-          involved.push_back(lsq.specs[free_index[c]].name);
+          const std::string& name = lsq.specs[free_index[c]].name;
+          if (std::find(involved.begin(), involved.end(), name) ==
+              involved.end()) {
+            involved.push_back(name);
+          }
         }
       }
       if (involved.empty()) {
@@ -348,6 +352,18 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     Report(lsq, x, &built, &best);
     // A free parameter on a search limit: the solver wanted to leave the
     // region where the model means something; not a converged fit.
+    // Fewer residuals than free parameters: any solution is one of many.
+    const int free_count = static_cast<int>(
+        std::count_if(best.parameters.begin(), best.parameters.end(),
+                      [](const ParameterReport& p) { return p.free; }));
+    if (best.converged && best.residuals < free_count) {
+      best.converged = false;
+      best.message = std::to_string(best.residuals) +
+                     " residual(s) cannot determine " +
+                     std::to_string(free_count) +
+                     " free parameters (give more rows, or fix some with "
+                     "--fix)";
+    }
     for (const ParameterReport& p : best.parameters) {
       if (!p.at_search_limit || !best.converged) continue;
       best.converged = false;

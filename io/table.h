@@ -47,6 +47,12 @@ struct TableRow {
   int source_line = 0;  // 1-based line in the file (0: made in memory)
 };
 
+// Light and view both above the surface (wi.z > 0 and wo.z > 0): a row a
+// reflection-only model (cloth, Lafortune) can explain.
+inline bool IsReflectionRow(const TableRow& row) {
+  return row.wi.z > 0.0 && row.wo.z > 0.0;
+}
+
 struct MeasurementTable {
   // Metadata lines in file order, keys lower-cased; unknown keys are kept.
   std::vector<std::pair<std::string, std::string>> metadata;

@@ -556,6 +556,74 @@ TEST(CliTest, FitBadUsage) {
                  {"--loss"});
 }
 
+// Tables that leave a fit nothing to fit are bad input (exit 2) for every
+// fit command; a one-row table cannot determine the model: exit 1.
+TEST(CliTest, FitWithoutInformationIsRefusedOrNotConverged) {
+  const fs::path dir = TestDir();
+  const std::string h =
+      "# quantity: brdf\ntheta_i,phi_i,theta_o,phi_o,r,g,b,weight\n";
+  WriteText(dir / "zero.csv",
+            h + "30,0,40,180,0.1,0.1,0.1,0\n50,90,20,0,0.2,0.2,0.2,0\n");
+  WriteText(dir / "bad.csv", h + "30,0,40,180,x,0.1,0.1,1\n");
+  WriteText(dir / "one.csv", h + "30,0,40,180,0.1,0.1,0.1,1\n");
+  const std::string out = (dir / "fit.json").string();
+  for (const std::vector<std::string>& model :
+       {std::vector<std::string>{"--model", "thread"},
+        {"--model", "cloth", "--preset", "linen_plain"},
+        {"--model", "slab"},
+        {"--model", "lafortune", "--lobes", "1"}}) {
+    std::vector<std::string> args = {"fit"};
+    args.insert(args.end(), model.begin(), model.end());
+    std::vector<std::string> zero = args;
+    zero.insert(zero.end(),
+                {"--data", (dir / "zero.csv").string(), "--out", out});
+    ExpectBadInput(dir, zero, {"zero.csv", "weight 0", "nothing to fit"});
+    std::vector<std::string> bad = args;
+    bad.insert(bad.end(), {"--data", (dir / "bad.csv").string(),
+                           "--skip-invalid", "--out", out});
+    ExpectBadInput(dir, bad, {"bad.csv", "no rows", "invalid"});
+  }
+  const RunResult one =
+      RunClothfit(dir, {"fit", "--model", "thread", "--data",
+                        (dir / "one.csv").string(), "--out", out});
+  EXPECT_EQ(one.status, 1) << Describe(one);
+  EXPECT_NE(one.err.find("cannot determine"), std::string::npos) << one.err;
+}
+
+// The cloth model is reflection only: transmission rows are left out with
+// a warning and counted in the "fit" object; only such rows: exit 2.
+TEST(CliTest, ClothFitLeavesOutTransmissionRowsAndSaysSo) {
+  const fs::path dir = TestDir();
+  const std::string table = (dir / "T.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "linen_plain", "--rows",
+                              "300", "--out", table})
+                .status,
+            0);
+  WriteText(dir / "mixed.csv",
+            ReadText(dir / "T.csv") + "30,0,120,0,0.5,0.5,0.5\n");
+  const RunResult r =
+      RunClothfit(dir, {"fit", "--model", "cloth", "--preset", "linen_plain",
+                        "--data", (dir / "mixed.csv").string(), "--out",
+                        (dir / "fit.json").string()});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.err.find("warning: 1 row(s) are not reflection"),
+            std::string::npos)
+      << r.err;
+  const ParamFile fit = ReadParamFile((dir / "fit.json").string());
+  EXPECT_NE(fit.fit_json.find("\"rows_not_used\":1"), std::string::npos)
+      << fit.fit_json;
+  EXPECT_NE(fit.fit_json.find("\"residuals\":900"), std::string::npos)
+      << fit.fit_json;
+  WriteText(dir / "below.csv",
+            "# quantity: brdf\ntheta_i,phi_i,theta_o,phi_o,r,g,b\n"
+            "30,0,120,0,0.5,0.5,0.5\n");
+  ExpectBadInput(
+      dir,
+      {"fit", "--model", "cloth", "--preset", "linen_plain", "--data",
+       (dir / "below.csv").string(), "--out", (dir / "f.json").string()},
+      {"below.csv", "reflection only"});
+}
+
 // Lafortune: a virtual-gonioreflectometer table -> per-texel and mip-level
 // fits -> an EXR parameter mip map with its index; and one model for a
 // table without texels, evaluated by `clothfit eval`.

@@ -322,27 +322,66 @@ TEST(ClothFitOutliers, CauchyLossRecoversWithinFivePercent) {
 // ---------------------------------------------------------------------------
 // 4. Identifiability.
 
-// A cloth reflects only (wi.z > 0 and wo.z > 0): a table whose viewers are
-// all below the surface holds zeros whatever the parameters, so none of
-// them is determined.
-TEST(ClothFitIdentifiability, TransmissionRowsDetermineNothing) {
+// A cloth reflects only (wi.z > 0 and wo.z > 0, SPEC §3.2): rows with the
+// viewer below the surface hold zeros whatever the parameters. They are
+// left out and counted, so the fit and its errors are those of the
+// reflection rows; a table of nothing else is an input error.
+TEST(ClothFitReflectionOnly, TransmissionRowsAreLeftOutAndCounted) {
   const ClothParams preset = Preset("linen_plain");
-  MeasurementTable table = ClothTable(preset, 0.0, kSeed + 4, 200);
-  for (TableRow& row : table.rows) row.wo.z = -std::abs(row.wo.z) - 1e-3;
-  for (TableRow& row : table.rows) row.wo = glm::normalize(row.wo);
-  Random random(kSeed);
-  SynthesizeValues(preset, SynthOptions(), &random, &table);
+  const MeasurementTable reflection = ClothTable(preset, 0.0, kSeed + 4, 300);
+  MeasurementTable below = ClothTable(preset, 0.0, kSeed + 14, 7);
+  for (TableRow& row : below.rows) {
+    row.wo = glm::normalize(
+        glm::dvec3(row.wo.x, row.wo.y, -std::abs(row.wo.z) - 1e-3));
+    row.value = glm::dvec3(0.5);  // what a transmission measurement may hold
+  }
+  MeasurementTable mixed = reflection;
+  mixed.rows.insert(mixed.rows.begin() + 100, below.rows.begin(),
+                    below.rows.end());
+  const ClothFitResult plain =
+      FitCloth(reflection, GenericStart(preset), DefaultOptions());
+  const ClothFitResult result =
+      FitCloth(mixed, GenericStart(preset), DefaultOptions());
+  ExpectAllFinite(result);
+  EXPECT_EQ(result.report.rows_not_used, 7);
+  EXPECT_EQ(plain.report.rows_not_used, 0);
+  EXPECT_EQ(result.report.residuals, 3 * 300);
+  EXPECT_NEAR(result.report.relative_rms, plain.report.relative_rms, 1e-9);
+  EXPECT_LT(result.report.relative_rms, 1e-4);
+  for (size_t i = 0; i < result.report.parameters.size(); ++i) {
+    EXPECT_NEAR(result.report.parameters[i].value,
+                plain.report.parameters[i].value,
+                1e-9 * (1.0 + std::abs(plain.report.parameters[i].value)))
+        << result.report.parameters[i].name;
+  }
+  EXPECT_NE(FitReportJson(result.report).find("\"rows_not_used\":7"),
+            std::string::npos);
+
+  try {
+    FitCloth(below, GenericStart(preset), DefaultOptions());
+    ADD_FAILURE() << "a table of transmission rows was fitted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reflection only"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A one-channel table fits one albedo per thread: the reported green and
+// blue albedos (summary, "fit" values) are that value, as in the file.
+TEST(ClothFitOneChannel, ReportedGreenAndBlueAlbedosFollowRed) {
+  const ClothParams preset = Preset("linen_plain");
+  MeasurementTable table = ClothTable(preset, 0.0, kSeed + 15, 300);
+  table.channels = 1;
+  for (TableRow& row : table.rows) row.value = glm::dvec3(row.value.x);
   const ClothFitResult result =
       FitCloth(table, GenericStart(preset), DefaultOptions());
-  ExpectAllFinite(result);
-  Note("identifiability", result.report.identifiability);
-  const std::vector<std::string> named =
-      UndeterminedNames(result.report.identifiability);
-  for (const ParameterReport& p : result.report.parameters) {
-    if (!p.free) continue;
-    EXPECT_TRUE(Contains(named, p.name))
-        << p.name << " not named in '" << result.report.identifiability << "'";
-    EXPECT_LT(p.stddev, 0.0) << p.name;
+  for (size_t j = 0; j < result.params.threads.size(); ++j) {
+    const std::string prefix = "threads[" + std::to_string(j) + "].";
+    const double red = Param(result.report, prefix + "albedo_r").value;
+    EXPECT_NEAR(red, preset.threads[j].params.albedo.x, 1e-3);
+    EXPECT_EQ(Param(result.report, prefix + "albedo_g").value, red);
+    EXPECT_EQ(Param(result.report, prefix + "albedo_b").value, red);
+    EXPECT_EQ(result.params.threads[j].params.albedo, glm::dvec3(red));
   }
 }
 
@@ -388,6 +427,18 @@ TEST(ClothFitIdentifiability, SingleRowIsReported) {
   EXPECT_NE(result.report.identifiability, "");
   for (const ParameterReport& p : result.report.parameters) {
     EXPECT_LT(p.stddev, 0.0) << p.name;
+  }
+  // Any solution is one of many: not a converged fit (exit 1), and it says
+  // why.
+  EXPECT_FALSE(result.report.converged);
+  EXPECT_NE(result.report.message.find("3 residual(s) cannot determine"),
+            std::string::npos)
+      << result.report.message;
+  // Each undetermined parameter is named once.
+  const std::vector<std::string> named =
+      UndeterminedNames(result.report.identifiability);
+  for (const std::string& name : named) {
+    EXPECT_EQ(std::count(named.begin(), named.end(), name), 1) << name;
   }
 }
 
