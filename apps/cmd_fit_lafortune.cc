@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "apps/commands.h"
@@ -49,7 +50,12 @@ int RunFitLafortune(int argc, char** argv) {
   args.Option("stack", "M.csv", "image-stack manifest instead of --data");
   args.Option("out", "P.json|P.exr",
               "result: JSON for one model, EXR per texel");
-  args.Option("lobes", "K", "number of lobes, 0 to 3", "2");
+  args.Option("init", "P.json",
+              "start from this Lafortune parameter file (its lobes; its "
+              "lookup table when fitted on the same views); every texel "
+              "starts from it");
+  args.Option("lobes", "K",
+              "number of lobes, 0 to 3 (default: --init's, or 2)");
   args.Option("tolerance", "REL",
               "per texel, the smallest K (0..3) whose relative rms error is "
               "at most REL");
@@ -77,9 +83,31 @@ int RunFitLafortune(int argc, char** argv) {
   }
   CheckWritable(out_path);  // before the fit, not after
   LafortuneMipOptions options;
-  const long lobes = args.GetInt("lobes");
-  if (lobes < 0 || lobes > 3) args.Fail("option '--lobes': must be 0 to 3");
+  std::optional<LafortuneModel> init;
+  if (args.Has("init")) {
+    const ParamFile file = ReadParamFile(args.Get("init"));
+    if (!std::holds_alternative<LafortuneModel>(file.params)) {
+      args.Fail(args.Get("init") +
+                ": expected a lafortune parameter file, "
+                "got " +
+                ModelName(file.params));
+    }
+    init = std::get<LafortuneModel>(file.params);
+  }
+  long lobes = 2;
+  if (args.Has("lobes")) {
+    lobes = args.GetInt("lobes");
+    if (lobes < 0 || lobes > 3) args.Fail("option '--lobes': must be 0 to 3");
+    if (init && static_cast<size_t>(lobes) != init->params.lobes.size()) {
+      args.Fail("option '--lobes': " + std::to_string(lobes) +
+                " lobe(s), but --init " + args.Get("init") + " has " +
+                std::to_string(init->params.lobes.size()));
+    }
+  } else if (init) {
+    lobes = static_cast<long>(init->params.lobes.size());
+  }
   options.fit.lobes = static_cast<int>(lobes);
+  if (init) options.fit.start = &*init;
   options.fit.lookup_table = !args.Has("no-lut");
   options.fit.data_driven_start = args.Has("data-start");
   options.fit.lut_threshold = args.GetDouble("lut-threshold");
@@ -129,10 +157,14 @@ int RunFitLafortune(int argc, char** argv) {
     const int skipped = CountNotReflection(table, source, "lafortune");
     const TexelFit best = FitTexelRows(table, views, rows, options);
     std::printf(
-        "lafortune fit: %s, %d lobe(s), %d alternation(s), %d "
-        "iterations\nrms %.4g, relative rms %.4g over %zu rows\n",
-        best.usable ? "usable" : "FAILED", best.lobes, best.alternations,
-        best.iterations, best.rms, best.relative_rms, rows.size() - skipped);
+        "lafortune fit: %s (%s), %d lobe(s), %d alternation(s), %d "
+        "iterations\ncost %.6g, rms %.4g, relative rms %.4g over %zu rows\n",
+        !best.usable     ? "FAILED"
+        : best.converged ? "converged"
+                         : "usable, not converged",
+        best.termination.c_str(), best.lobes, best.alternations,
+        best.iterations, best.final_cost, best.rms, best.relative_rms,
+        rows.size() - skipped);
     if (!best.usable) {
       std::cerr << "error: the fit did not reach a usable solution: "
                 << best.message << "; nothing written\n";
@@ -140,6 +172,9 @@ int RunFitLafortune(int argc, char** argv) {
     }
     nlohmann::ordered_json fit;
     fit["usable"] = true;
+    fit["converged"] = best.converged;
+    fit["termination"] = best.termination;
+    fit["final_cost"] = best.final_cost;
     fit["lobes"] = best.lobes;
     fit["alternations"] = best.alternations;
     fit["iterations"] = best.iterations;
@@ -149,6 +184,12 @@ int RunFitLafortune(int argc, char** argv) {
     fit["rows"] = rows.size() - skipped;
     WriteParamFile(ParamFile{best.model, fit.dump()}, out_path);
     std::printf("wrote %s\n", out_path.c_str());
+    if (!best.converged) {
+      std::cerr << "error: the fit stopped without converging: "
+                << best.termination
+                << " (raise --alternations or --lut-threshold)\n";
+      return 1;
+    }
     return 0;
   }
 
@@ -159,17 +200,19 @@ int RunFitLafortune(int argc, char** argv) {
   }
   if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
   const LafortuneMipResult result = FitLafortuneMip(table, options);
-  int unusable = 0;
-  std::string first_unusable;  // where, and why
+  int unusable = 0, not_converged = 0;
+  std::string first_unusable, first_not_converged;  // where, and why
   double worst = 0.0;
   for (size_t l = 0; l < result.levels.size(); ++l) {
     const LafortuneLevel& level = result.levels[l];
     for (size_t i = 0; i < level.texels.size(); ++i) {
       const TexelFit& t = level.texels[i];
-      if (!t.usable && unusable++ == 0) {
-        first_unusable = "level " + std::to_string(l) + ", texel (" +
-                         std::to_string(i % level.width) + ", " +
-                         std::to_string(i / level.width) + "): " + t.message;
+      const std::string where = "level " + std::to_string(l) + ", texel (" +
+                                std::to_string(i % level.width) + ", " +
+                                std::to_string(i / level.width) + "): ";
+      if (!t.usable && unusable++ == 0) first_unusable = where + t.message;
+      if (t.usable && !t.converged && not_converged++ == 0) {
+        first_not_converged = where + t.termination;
       }
       worst = std::max(worst, t.relative_rms);
     }
@@ -201,6 +244,14 @@ int RunFitLafortune(int argc, char** argv) {
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
+  if (not_converged > 0) {
+    // A texel whose lookup table still moved at the cap is usable; the map
+    // is written and the count reported (docs/decisions.md).
+    std::cerr << "warning: " << not_converged << " of " << result.fits
+              << " texel fit(s) stopped at the alternation cap; the first at "
+              << first_not_converged
+              << " (raise --alternations or --lut-threshold)\n";
+  }
   if (unusable > 0) {
     std::cerr << "error: " << unusable
               << " texel fit(s) reached no usable solution (zero in the "

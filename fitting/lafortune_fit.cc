@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <memory>
 #include <sstream>
 #include <unordered_map>
@@ -452,8 +453,26 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     }
   }
   if (warm != nullptr && options.lookup_table) t = warm->lut.color;
-  std::vector<LafortuneParams> starts = {
-      warm != nullptr ? warm->params : PaperStart(lobes, 0.5, 1.0)};
+  // A given start (--init) with this lobe count, and its lookup table when
+  // it was fitted on the same views.
+  const LafortuneModel* given =
+      warm == nullptr && options.start != nullptr &&
+              static_cast<int>(options.start->params.lobes.size()) == lobes
+          ? options.start
+          : nullptr;
+  if (given != nullptr && options.lookup_table &&
+      given->lut.views.size() == n_views &&
+      given->lut.color.size() == n_views) {
+    bool same_views = true;
+    for (size_t k = 0; k < n_views && same_views; ++k) {
+      same_views = glm::length(given->lut.views[k] - samples.views[k]) <= 1e-9;
+    }
+    if (same_views) t = given->lut.color;
+  }
+  std::vector<LafortuneParams> starts = {warm != nullptr ? warm->params
+                                         : given != nullptr
+                                             ? given->params
+                                             : PaperStart(lobes, 0.5, 1.0)};
   if (options.data_driven_start && warm == nullptr) {
     const double mean_peak = std::max((peak.x + peak.y + peak.z) / 3.0, 1e-6);
     LafortuneParams d = PaperStart(lobes, 0.0, std::pow(mean_peak, 0.1));
@@ -484,6 +503,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   out.alternations = 1;
   // Alternation: T in closed form per view and channel (eq. 4), then the
   // lobes again, until the mean relative change of T is small.
+  bool lut_converged = false;
   if (options.lookup_table) {
     for (int pass = 1; pass < options.max_alternations; ++pass) {
       std::vector<glm::dvec3> fr(n_views, glm::dvec3(0.0)),
@@ -519,8 +539,26 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       out.iterations += FitLobes(samples, t, later, false, &p).iterations;
       ++out.alternations;
       if (Finite(p)) best = p;
-      if (out.lut_change < options.lut_threshold) break;
+      if (out.lut_change < options.lut_threshold) {
+        lut_converged = true;
+        break;
+      }
     }
+  }
+  if (!options.lookup_table) {
+    out.converged = true;
+    out.termination = "no lookup table: one lobe fit";
+  } else if (lut_converged) {
+    out.converged = true;
+    out.termination = "lookup table converged";
+  } else {
+    char why[160];
+    std::snprintf(why, sizeof(why),
+                  "alternation cap (%d) reached; the lookup table still "
+                  "changed by %.3g (threshold %.3g)",
+                  options.max_alternations, out.lut_change,
+                  options.lut_threshold);
+    out.termination = why;
   }
   // A first pass on a subsample is refined on all samples when no later
   // pass did (no lookup table, or a single alternation): a lobe fitted to a
@@ -540,6 +578,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     se += glm::dot(d, d);
     ss += glm::dot(samples.value[i], samples.value[i]);
   }
+  out.final_cost = 0.5 * Cost(samples, t, best);
   out.rms = std::sqrt(se / (3.0 * samples.size()));
   out.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
   out.usable = std::isfinite(out.rms);

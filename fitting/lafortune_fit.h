@@ -114,6 +114,10 @@ struct LafortuneFitOptions {
   // instead of the paper's; candidates with another lobe count are
   // ignored.
   std::vector<const LafortuneModel*> warm_starts;
+  // If set (`fit --init`), the start when no warm start applies, in place
+  // of the paper's, when it has `lobes` lobes; its lookup table is used
+  // too when its views are the samples' views (each within 1e-9).
+  const LafortuneModel* start = nullptr;
 };
 
 struct LafortuneFitResult {
@@ -125,6 +129,12 @@ struct LafortuneFitResult {
   double rms = 0.0;           // of model - value (cosine-weighted)
   double relative_rms = 0.0;  // rms / rms(value)
   double lut_change = 0.0;    // mean relative change of T, last pass
+  // 1/2 sum of weighted squared residuals (cosine-weighted), as Ceres'.
+  double final_cost = 0.0;
+  // The alternation stopped because T changed less than lut_threshold (or
+  // there is no lookup table), not at the max_alternations cap.
+  bool converged = false;
+  std::string termination;  // why it stopped, in words
 };
 
 // Never throws for data problems: an empty texel, all-zero values or views

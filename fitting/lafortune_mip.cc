@@ -38,6 +38,9 @@ TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
     fit.alternations = r.alternations;
     fit.iterations = r.iterations;
     fit.lut_change = r.lut_change;
+    fit.final_cost = r.final_cost;
+    fit.converged = r.converged;
+    fit.termination = r.termination;
     // Errors over the rows, not the merged samples.
     LafortuneErrors(r.model, table, views, rows, &fit.rms, &fit.relative_rms,
                     &fit.view_relative_rms);

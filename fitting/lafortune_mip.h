@@ -38,6 +38,9 @@ struct TexelFit {
   std::string message;  // why not usable
   int alternations = 0, iterations = 0;
   double lut_change = 0.0;
+  double final_cost = 0.0;  // as LafortuneFitResult's
+  bool converged = false;   // as LafortuneFitResult's
+  std::string termination;
 };
 
 struct LafortuneLevel {

@@ -15,6 +15,7 @@
 #include <initializer_list>
 #include <iterator>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
@@ -903,6 +904,43 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
                  {"fit", "--model", "lafortune", "--data", table, "--lobes",
                   "5", "--out", out},
                  {"--lobes"});
+
+  // The "fit" object (SPEC §4): cost, termination, convergence.
+  for (const char* key :
+       {"\"final_cost\"", "\"termination\"", "\"converged\":true"}) {
+    EXPECT_NE(p.fit_json.find(key), std::string::npos) << key;
+  }
+  // --init: a fit started from the result needs fewer iterations; its lobe
+  // count is the default; a different --lobes or another model is refused.
+  const std::string again = (dir / "again.json").string();
+  const RunResult init =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                        "--init", out, "--no-lut", "--out", again});
+  ASSERT_EQ(init.status, 0) << Describe(init);
+  const ParamFile q = ReadParamFile(again);
+  EXPECT_EQ(std::get<LafortuneModel>(q.params).params.lobes.size(), 1u);
+  const auto iterations = [](const ParamFile& f) {
+    return nlohmann::json::parse(f.fit_json)["iterations"].get<int>();
+  };
+  EXPECT_LT(iterations(q), iterations(p)) << q.fit_json << "\n" << p.fit_json;
+  EXPECT_NEAR(std::get<LafortuneModel>(q.params).params.diffuse.x, 0.3, 0.01);
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", table, "--init", out,
+                  "--lobes", "2", "--out", again},
+                 {"--lobes", "has 1"});
+  WriteText(dir / "slab.json",
+            R"({"model": "slab", "tau": 0.5, "albedo": [0.9, 0.8, 0.7]})");
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", table, "--init",
+                  (dir / "slab.json").string(), "--out", again},
+                 {"slab.json", "lafortune"});
+  // A lookup table never fitted (one alternation): not converged, exit 1.
+  const RunResult capped =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                        "--alternations", "1", "--out", again});
+  EXPECT_EQ(capped.status, 1) << Describe(capped);
+  EXPECT_NE(capped.err.find("without converging"), std::string::npos)
+      << capped.err;
 }
 
 }  // namespace

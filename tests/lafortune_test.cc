@@ -260,6 +260,76 @@ TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
   EXPECT_LE(b.relative_rms, 1e-9);
 }
 
+// A given start (fit --init): used when its lobe count is the one fitted,
+// with its lookup table when fitted on the same views; ignored otherwise.
+TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
+  const std::vector<glm::dvec3> views = Hemisphere(6);
+  const LafortuneModel truth = TruthModel(views);
+  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  LafortuneFitOptions cold, given;
+  given.start = &truth;
+  const LafortuneFitResult a = FitLafortune(samples, cold);
+  const LafortuneFitResult b = FitLafortune(samples, given);
+  ASSERT_TRUE(b.usable);
+  EXPECT_LT(b.iterations, a.iterations / 2);
+  EXPECT_LE(b.relative_rms, 1e-9);
+  EXPECT_LE(b.final_cost, 1e-18);
+
+  // One pass (no T update): the lookup table is the start's.
+  LafortuneModel marked = truth;
+  for (glm::dvec3& c : marked.lut.color) c *= 2.0;
+  LafortuneFitOptions one_pass;
+  one_pass.max_alternations = 1;
+  one_pass.start = &marked;
+  EXPECT_EQ(FitLafortune(samples, one_pass).model.lut.color, marked.lut.color);
+  // Other views: T starts at 1.
+  LafortuneModel elsewhere = marked;
+  for (glm::dvec3& v : elsewhere.lut.views) v = glm::normalize(v + 0.01);
+  one_pass.start = &elsewhere;
+  for (const glm::dvec3& c : FitLafortune(samples, one_pass).model.lut.color) {
+    EXPECT_EQ(c, glm::dvec3(1.0));
+  }
+  // Another lobe count: the paper's start, as without one.
+  LafortuneModel one_lobe = truth;
+  one_lobe.params.lobes.resize(1);
+  LafortuneFitOptions ignored;
+  ignored.start = &one_lobe;
+  const LafortuneFitResult c = FitLafortune(samples, ignored);
+  EXPECT_EQ(c.iterations, a.iterations);
+  EXPECT_EQ(c.final_cost, a.final_cost);
+}
+
+// Convergence: the alternation stops because T settled, or is reported as
+// stopped at the cap; final_cost is half the weighted squared residuals.
+TEST(LafortuneFit, ConvergenceAndFinalCostAreReported) {
+  const std::vector<glm::dvec3> views = Hemisphere(6);
+  const LafortuneModel truth = TruthModel(views);
+  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  LafortuneFitOptions capped;
+  capped.lut_threshold = 0.0;  // never met
+  capped.max_alternations = 3;
+  const LafortuneFitResult r = FitLafortune(samples, capped);
+  ASSERT_TRUE(r.usable);
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.alternations, 3);
+  EXPECT_NE(r.termination.find("alternation cap (3)"), std::string::npos)
+      << r.termination;
+  double cost = 0.0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const glm::dvec3 d =
+        LafortuneRho(r.model, samples.l[i], samples.v[i]) - samples.value[i];
+    cost += 0.5 * glm::dot(samples.weight[i] * d, d);
+  }
+  EXPECT_NEAR(r.final_cost, cost, 1e-9 * cost + 1e-15);
+
+  const LafortuneFitResult settled = FitLafortune(samples, {});
+  EXPECT_TRUE(settled.converged);
+  EXPECT_EQ(settled.termination, "lookup table converged");
+  LafortuneFitOptions no_lut;
+  no_lut.lookup_table = false;
+  EXPECT_TRUE(FitLafortune(samples, no_lut).converged);
+}
+
 TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
