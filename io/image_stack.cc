@@ -99,6 +99,15 @@ Manifest ParseManifest(std::string_view text, const std::string& name) {
     ++line;
     if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
     const std::string_view trimmed = Trim(content);
+    if (!trimmed.empty() && trimmed.front() == '#' && header_line == 0) {
+      const auto version =
+          text_util::FormatVersion(trimmed.substr(1), "clothfit-stack");
+      if (version && *version != "1") {
+        Fail(name, line, 0,
+             "unsupported manifest format version " + Quote(*version) +
+                 " (this clothfit reads '# clothfit-stack 1')");
+      }
+    }
     if (trimmed.empty() || trimmed.front() == '#') {
       // Before the header, '#' lines are metadata (as in a table); the
       // table parser reads all but normal_map, which names a file.

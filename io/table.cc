@@ -144,6 +144,16 @@ class TableParser {
 };
 
 void TableParser::ParseMetadata(std::string_view content, int line) {
+  // The format line "# clothfit-table N": this reader reads version 1.
+  if (const auto version =
+          text_util::FormatVersion(content, "clothfit-table")) {
+    if (*version != "1") {
+      Fail(line, 0,
+           "unsupported table format version " + Quote(*version) +
+               " (this clothfit reads '# clothfit-table 1')");
+    }
+    return;
+  }
   const size_t colon = content.find(':');
   if (colon == std::string_view::npos) return;  // A comment.
   const std::string key = Lower(Trim(content.substr(0, colon)));

@@ -53,6 +53,16 @@ std::string Quote(std::string_view text) {
   return "'" + quoted + "'";
 }
 
+std::optional<std::string> FormatVersion(std::string_view comment,
+                                         std::string_view magic) {
+  const std::string_view words = Trim(comment);
+  if (Lower(words.substr(0, magic.size())) != magic ||
+      (words.size() > magic.size() && !IsSpace(words[magic.size()]))) {
+    return std::nullopt;
+  }
+  return std::string(Trim(words.substr(magic.size())));
+}
+
 bool EndsWith(std::string_view text, std::string_view suffix) {
   return text.size() >= suffix.size() &&
          text.substr(text.size() - suffix.size()) == suffix;

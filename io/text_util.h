@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +30,12 @@ std::string Printable(std::string_view text);
 // Quotes (part of) a field for an error message: printable ASCII is kept,
 // other bytes are escaped, fields longer than kMaxQuotedLength are shortened.
 std::string Quote(std::string_view text);
+
+// For a '#' line's text after the '#' that starts with the word `magic`
+// (case-insensitive; e.g. "clothfit-table 1"): the rest, trimmed (the
+// format version); nullopt for any other line.
+std::optional<std::string> FormatVersion(std::string_view comment,
+                                         std::string_view magic);
 
 // Whether `text` ends with `suffix`.
 bool EndsWith(std::string_view text, std::string_view suffix);

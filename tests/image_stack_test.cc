@@ -399,6 +399,9 @@ TEST(ImageStackErrorTest, BadManifest) {
   ExpectHas(error_for("theta_i,phi_i,theta_o,phi_o,file\n# none\n"),
             {manifest + ":1:", "no images"});
   ExpectHas(error_for("# only metadata\n"), {manifest, "no header"});
+  ExpectHas(error_for("# clothfit-stack 2\ntheta_i,phi_i,theta_o,phi_o,file\n"
+                      "1,2,3,4,stack_0000.exr\n"),
+            {manifest + ":1:", "version '2'", "clothfit-stack 1"});
   ExpectHas(error_for("# units: parsecs\ntheta_i,phi_i,theta_o,phi_o,file\n"
                       "1,2,3,4,x.exr\n"),
             {manifest + ":1:", "units"});

@@ -410,6 +410,19 @@ TEST(TableErrorTest, BadMetadata) {
       {"data.csv:1:", "units", "'gradians'"});
 }
 
+// "# clothfit-table N": version 1 is read (any case); another version, or
+// none, is refused rather than read as if it were 1.
+TEST(TableErrorTest, FormatVersionOtherThanOne) {
+  const std::string rest = "theta_i,phi_i,theta_o,phi_o,value\n1,2,3,4,5\n";
+  ExpectError("# clothfit-table 2\n" + rest,
+              {"data.csv:1:", "version '2'", "clothfit-table 1"});
+  ExpectError("# quantity: brdf\n#clothfit-table\n" + rest,
+              {"data.csv:2:", "version ''"});
+  EXPECT_EQ(ParseError("# CLOTHFIT-TABLE 1\n" + rest), "");
+  // Other words are comments.
+  EXPECT_EQ(ParseError("# clothfit-tables 2\n# clothfit table 2\n" + rest), "");
+}
+
 TEST(TableErrorTest, EmptyTable) {
   ExpectError("# quantity: brdf\n\ntheta_i,phi_i,theta_o,phi_o,r,g,b\n\n",
               {"data.csv:3:", "no rows"});
