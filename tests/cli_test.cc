@@ -335,6 +335,65 @@ TEST(CliTest, HelpOnEveryCommand) {
   EXPECT_NE(top.out.find("usage:"), std::string::npos);
 }
 
+TEST(CliTest, VersionPrintsTheProjectVersion) {
+  const fs::path dir = TestDir();
+  // CLOTHFIT_VERSION is CMake's project(VERSION ...): three numbers.
+  const std::string version = CLOTHFIT_VERSION;
+  int parts = 0;
+  std::stringstream ss(version);
+  for (std::string part; std::getline(ss, part, '.'); ++parts) {
+    EXPECT_FALSE(part.empty()) << version;
+    EXPECT_EQ(part.find_first_not_of("0123456789"), std::string::npos)
+        << version;
+  }
+  EXPECT_EQ(parts, 3) << version;
+  for (const char* form : {"--version", "version"}) {
+    const RunResult r = RunClothfit(dir, {form});
+    EXPECT_EQ(r.status, 0) << form << "\n" << Describe(r);
+    EXPECT_EQ(r.out, "clothfit " + version + "\n") << form;
+    EXPECT_EQ(r.err, "") << form;
+  }
+  const RunResult top = RunClothfit(dir, {"--help"});
+  EXPECT_NE(top.out.find("--version"), std::string::npos) << top.out;
+  EXPECT_NE(top.out.find("help <command>"), std::string::npos) << top.out;
+  ExpectBadInput(dir, {"version", "extra"}, {"version", "extra"});
+}
+
+// clothfit help CMD [ARGS] prints what clothfit CMD [ARGS] --help prints.
+TEST(CliTest, HelpCommandPrintsTheCommandsHelp) {
+  const fs::path dir = TestDir();
+  // Plain commands, commands whose help depends on their arguments, and a
+  // subcommand.
+  const std::vector<std::vector<std::string>> commands = {
+      {"eval"},
+      {"fit", "--model", "lafortune"},
+      {"synth", "--model", "slab"},
+      {"holes", "eval"},
+      {"version"}};
+  for (const std::vector<std::string>& command : commands) {
+    std::vector<std::string> direct = command;
+    direct.push_back("--help");
+    std::vector<std::string> via_help = {"help"};
+    via_help.insert(via_help.end(), command.begin(), command.end());
+    const RunResult want = RunClothfit(dir, direct);
+    const RunResult got = RunClothfit(dir, via_help);
+    const std::string what = command[0] + (command.size() > 1 ? " ..." : "");
+    EXPECT_EQ(want.status, 0) << what << "\n" << Describe(want);
+    EXPECT_EQ(got.status, 0) << what << "\n" << Describe(got);
+    EXPECT_NE(want.out.find("usage:"), std::string::npos) << what;
+    EXPECT_EQ(got.out, want.out) << what;
+    EXPECT_EQ(got.err, "") << what;
+  }
+  // The help texts differ, so the comparison above tells commands apart.
+  EXPECT_NE(RunClothfit(dir, {"help", "eval"}).out,
+            RunClothfit(dir, {"help", "fit"}).out);
+  // 'help' alone is the general usage.
+  const RunResult usage = RunClothfit(dir, {"help"});
+  EXPECT_EQ(usage.status, 0);
+  EXPECT_EQ(usage.out, RunClothfit(dir, {"--help"}).out);
+  ExpectBadInput(dir, {"help", "nosuch"}, {"help", "'nosuch'", "eval"});
+}
+
 // A directory with a valid P.json (linen) and D.csv (a few directions).
 fs::path DirWithInputs() {
   const fs::path dir = TestDir();
