@@ -41,6 +41,9 @@ int RunEval(int argc, char** argv) {
     row.sigma = glm::dvec3(1.0);
   }
   WriteTable(table, out_path);
+  if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
+    if (table.quantity != Quantity::kTransmittance) NoteSlabRegime(*slab);
+  }
   return 0;
 }
 
