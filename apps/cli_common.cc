@@ -1,5 +1,8 @@
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,6 +61,41 @@ std::vector<double> NumberListOption(const CommandArgs& args,
   }
   if (out.empty()) args.Fail("option '--" + name + "': needs a number");
   return out;
+}
+
+namespace {
+
+// "0.1" when the channels agree, else "0.1,0.2,0.4".
+std::string FormatRgb(const glm::dvec3& v) {
+  char text[96];
+  if (v.x == v.y && v.x == v.z) {
+    std::snprintf(text, sizeof(text), "%g", v.x);
+  } else {
+    std::snprintf(text, sizeof(text), "%g,%g,%g", v.x, v.y, v.z);
+  }
+  return text;
+}
+
+}  // namespace
+
+void NoteSlabRegime(const SlabParams& p) {
+  const double error = SlabParamsSingleScatterError(p);
+  if (!(error > kSlabRegimeTolerance)) return;
+  const double max_tau = std::max({p.tau.x, p.tau.y, p.tau.z});
+  char estimate[160];
+  std::snprintf(estimate, sizeof(estimate),
+                "estimated error A q(tau) = %.2g %% > %.0f %%%s", 100.0 * error,
+                100.0 * kSlabRegimeTolerance,
+                max_tau < kSlabPaperTauLimit
+                    ? ", although tau is below the paper's bound 0.2"
+                    : "");
+  std::cerr << "note: tau = " << FormatRgb(p.tau)
+            << ", albedo = " << FormatRgb(p.albedo)
+            << " are outside the slab model's single-scattering regime ("
+            << estimate
+            << "): its f_r, f_t lack multiple scattering and are too low; "
+               "'clothfit synth --model slab --mc' gives every order "
+               "(docs/slab.md)\n";
 }
 
 std::string ModelArgument(int argc, char** argv, int first) {

@@ -155,6 +155,9 @@ int RunSynth(int argc, char** argv) {
   sample << ", noise " << options.noise << ", seed " << seed;
   table.SetMeta("sample", sample.str());
   WriteTable(table, out_path);
+  if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
+    NoteSlabRegime(*slab);
+  }
   return 0;
 }
 

@@ -216,6 +216,8 @@ int RunSynthSlab(int argc, char** argv) {
   }
   if (args.Has("out")) WriteTable(bsdf, args.Get("out"));
   if (args.Has("transmittance")) WriteTable(direct, args.Get("transmittance"));
+  // The formulas' BSDF values (the direct transmittance is exact).
+  if (!mc && args.Has("out")) NoteSlabRegime(params);
   return 0;
 }
 

@@ -48,6 +48,14 @@ std::vector<double> NumberListOption(const CommandArgs& args,
 // commands that dispatch on it before parsing their options).
 std::string ModelArgument(int argc, char** argv, int first = 2);
 
+// SPEC §3.4: where the slab's single-scattering form is not accurate, the
+// tool says so. When `p` lies outside the model's regime (the estimated
+// error SlabParamsSingleScatterError above kSlabRegimeTolerance, the rule of
+// fit --model slab's validity report), prints one line on stderr starting
+// "note: " that names tau, the albedo and what to use instead (synth --mc).
+// Direct transmittance is exact and needs no note.
+void NoteSlabRegime(const SlabParams& p);
+
 // The solver options of a fit command: --loss, --loss-scale,
 // --max-iterations and --threads (apps/cmd_fit.cc), and their values (with
 // a progress line on a terminal).

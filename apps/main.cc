@@ -5,11 +5,29 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "apps/commands.h"
 #include "io/input_error.h"
 
+// The project version, from CMake's project(VERSION ...) (apps/CMakeLists.txt).
+#ifndef CLOTHFIT_VERSION
+#error "CLOTHFIT_VERSION must be defined by the build"
+#endif
+
 namespace {
+
+// clothfit version (and clothfit --version): "clothfit X.Y.Z".
+int RunVersion(int argc, char** argv) {
+  clothfit::CommandArgs args("version", "clothfit version | clothfit --version",
+                             "Prints the version of clothfit.");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  if (!args.Positional().empty()) {
+    args.Fail("unexpected argument '" + args.Positional()[0] + "'");
+  }
+  std::cout << "clothfit " << CLOTHFIT_VERSION << "\n";
+  return 0;
+}
 
 struct Command {
   const char* name;
@@ -28,10 +46,13 @@ const Command kCommands[] = {
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
     {"render", clothfit::RunRender, "preview renders of parameter files"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},
+    {"version", RunVersion, "print the version (also --version)"},
 };
 
 void PrintUsage(std::ostream& out) {
-  out << "usage: clothfit <command> [options]   (clothfit <command> --help)\n"
+  out << "usage: clothfit <command> [options]\n"
+         "       clothfit <command> --help   (or clothfit help <command>)\n"
+         "       clothfit --version\n"
          "\ncommands:\n";
   for (const Command& c : kCommands) {
     out << "  " << c.name << std::string(10 - std::strlen(c.name), ' ')
@@ -39,6 +60,25 @@ void PrintUsage(std::ostream& out) {
   }
   out << "\nexit status: 0 success, 1 a fit without a usable solution, "
          "2 bad input or usage\n";
+}
+
+const Command* FindCommand(const std::string& name) {
+  for (const Command& c : kCommands) {
+    if (name == c.name) return &c;
+  }
+  return nullptr;
+}
+
+// One line, like every bad input: the unknown name, the commands, and where
+// the usage is. `context` is "" or e.g. "clothfit help: ".
+int UnknownCommand(const std::string& context, const std::string& name) {
+  std::string names;
+  for (const Command& c : kCommands) {
+    names += (names.empty() ? "" : ", ") + std::string(c.name);
+  }
+  std::cerr << "error: " << context << "unknown command '" << name
+            << "' (commands: " << names << "; see 'clothfit --help')\n";
+  return 2;
 }
 
 }  // namespace
@@ -52,31 +92,40 @@ int main(int argc, char** argv) {
     PrintUsage(std::cerr);
     return 2;
   }
-  const std::string name = argv[1];
-  if (name == "--help" || name == "-h" || name == "help") {
+  std::string name = argv[1];
+  if (name == "--help" || name == "-h" || (name == "help" && argc == 2)) {
     PrintUsage(std::cout);
     return 0;
   }
-  for (const Command& c : kCommands) {
-    if (name != c.name) continue;
-    try {
-      return c.run(argc, argv);
-    } catch (const clothfit::InputError& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      return 2;
-    } catch (const std::bad_alloc&) {
-      std::cerr << "error: out of memory\n";
-      return 2;
-    } catch (const std::exception& e) {
-      std::cerr << "internal error: " << e.what() << "\n";
-      return 3;
+  if (name == "--version") name = "version";
+  // clothfit help CMD [ARGS...] runs clothfit CMD [ARGS...] --help, so that
+  // it prints exactly that help (e.g. clothfit help synth --model slab).
+  std::vector<char*> help_argv;
+  static char help_flag[] = "--help";
+  if (name == "help") {
+    name = argv[2];
+    if (FindCommand(name) == nullptr) {
+      return UnknownCommand("clothfit help: ", name);
     }
+    help_argv.push_back(argv[0]);
+    for (int i = 2; i < argc; ++i) help_argv.push_back(argv[i]);
+    help_argv.push_back(help_flag);
+    argc = static_cast<int>(help_argv.size());
+    help_argv.push_back(nullptr);  // argv[argc] is null, as for main
+    argv = help_argv.data();
   }
-  // One line, like every bad input: the commands, and where the usage is.
-  std::string names;
-  for (const Command& c : kCommands)
-    names += (names.empty() ? "" : ", ") + std::string(c.name);
-  std::cerr << "error: unknown command '" << name << "' (commands: " << names
-            << "; see 'clothfit --help')\n";
-  return 2;
+  const Command* c = FindCommand(name);
+  if (c == nullptr) return UnknownCommand("", name);
+  try {
+    return c->run(argc, argv);
+  } catch (const clothfit::InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: out of memory\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "internal error: " << e.what() << "\n";
+    return 3;
+  }
 }

@@ -46,6 +46,7 @@
 // (like Lommel-Seeliger); mu_i + mu_o is floored at kSlabMinMuSum there.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -327,6 +328,18 @@ inline double SlabRescatterProbability(double tau) {
 // against all orders of scattering (thin-slab estimate, see above).
 inline double SlabSingleScatterError(double tau, double albedo) {
   return albedo * SlabRescatterProbability(tau);
+}
+
+// The estimated relative error of the single-scattering f_r, f_t for a
+// parameter set: the largest SlabSingleScatterError over the channels.
+// Above kSlabRegimeTolerance the parameters lie outside the model's regime
+// (SPEC §3.4: "where it is not [accurate], the tool says so"; docs/slab.md).
+inline double SlabParamsSingleScatterError(const SlabParams& p) {
+  double error = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    error = std::max(error, SlabSingleScatterError(p.tau[c], p.albedo[c]));
+  }
+  return error;
 }
 
 // The albedo whose all-orders slab matches a single-scattering fit's albedo

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/lafortune_mip.h"
 #include "io/atomic_file.h"
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
@@ -334,6 +335,65 @@ TEST(CliTest, HelpOnEveryCommand) {
   const RunResult top = RunClothfit(dir, {"--help"});
   EXPECT_EQ(top.status, 0) << Describe(top);
   EXPECT_NE(top.out.find("usage:"), std::string::npos);
+}
+
+TEST(CliTest, VersionPrintsTheProjectVersion) {
+  const fs::path dir = TestDir();
+  // CLOTHFIT_VERSION is CMake's project(VERSION ...): three numbers.
+  const std::string version = CLOTHFIT_VERSION;
+  int parts = 0;
+  std::stringstream ss(version);
+  for (std::string part; std::getline(ss, part, '.'); ++parts) {
+    EXPECT_FALSE(part.empty()) << version;
+    EXPECT_EQ(part.find_first_not_of("0123456789"), std::string::npos)
+        << version;
+  }
+  EXPECT_EQ(parts, 3) << version;
+  for (const char* form : {"--version", "version"}) {
+    const RunResult r = RunClothfit(dir, {form});
+    EXPECT_EQ(r.status, 0) << form << "\n" << Describe(r);
+    EXPECT_EQ(r.out, "clothfit " + version + "\n") << form;
+    EXPECT_EQ(r.err, "") << form;
+  }
+  const RunResult top = RunClothfit(dir, {"--help"});
+  EXPECT_NE(top.out.find("--version"), std::string::npos) << top.out;
+  EXPECT_NE(top.out.find("help <command>"), std::string::npos) << top.out;
+  ExpectBadInput(dir, {"version", "extra"}, {"version", "extra"});
+}
+
+// clothfit help CMD [ARGS] prints what clothfit CMD [ARGS] --help prints.
+TEST(CliTest, HelpCommandPrintsTheCommandsHelp) {
+  const fs::path dir = TestDir();
+  // Plain commands, commands whose help depends on their arguments, and a
+  // subcommand.
+  const std::vector<std::vector<std::string>> commands = {
+      {"eval"},
+      {"fit", "--model", "lafortune"},
+      {"synth", "--model", "slab"},
+      {"holes", "eval"},
+      {"version"}};
+  for (const std::vector<std::string>& command : commands) {
+    std::vector<std::string> direct = command;
+    direct.push_back("--help");
+    std::vector<std::string> via_help = {"help"};
+    via_help.insert(via_help.end(), command.begin(), command.end());
+    const RunResult want = RunClothfit(dir, direct);
+    const RunResult got = RunClothfit(dir, via_help);
+    const std::string what = command[0] + (command.size() > 1 ? " ..." : "");
+    EXPECT_EQ(want.status, 0) << what << "\n" << Describe(want);
+    EXPECT_EQ(got.status, 0) << what << "\n" << Describe(got);
+    EXPECT_NE(want.out.find("usage:"), std::string::npos) << what;
+    EXPECT_EQ(got.out, want.out) << what;
+    EXPECT_EQ(got.err, "") << what;
+  }
+  // The help texts differ, so the comparison above tells commands apart.
+  EXPECT_NE(RunClothfit(dir, {"help", "eval"}).out,
+            RunClothfit(dir, {"help", "fit"}).out);
+  // 'help' alone is the general usage.
+  const RunResult usage = RunClothfit(dir, {"help"});
+  EXPECT_EQ(usage.status, 0);
+  EXPECT_EQ(usage.out, RunClothfit(dir, {"--help"}).out);
+  ExpectBadInput(dir, {"help", "nosuch"}, {"help", "'nosuch'", "eval"});
 }
 
 // A directory with a valid P.json (linen) and D.csv (a few directions).
@@ -941,6 +1001,169 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
   EXPECT_EQ(capped.status, 1) << Describe(capped);
   EXPECT_NE(capped.err.find("without converging"), std::string::npos)
       << capped.err;
+}
+
+// The texel (x, y) of level l of the mip map below: its diffuse rho_d and
+// whether it has the lobe (Cx, Cy, Cz, N) = (-0.5, -0.75, 1, 3). Every
+// value is exact in float (the EXR stores FLOAT channels).
+glm::dvec3 MipDiffuse(int l, int x, int y) {
+  return glm::dvec3(0.125 * (1 + x + 4 * y), 0.0625 * (1 + l), 0.5);
+}
+bool MipHasLobe(int l, int x, int y) { return (l + x + y) % 2 == 1; }
+
+// A Lafortune parameter mip map with a 4 x 2 base (levels 4 x 2, 2 x 1,
+// 1 x 1, OpenEXR's ROUND_DOWN sizes), no lookup tables, normals +z.
+void WriteTestMip(const std::string& path) {
+  LafortuneMipResult r;
+  const int sizes[3][2] = {{4, 2}, {2, 1}, {1, 1}};
+  for (int l = 0; l < 3; ++l) {
+    LafortuneLevel level;
+    level.width = sizes[l][0];
+    level.height = sizes[l][1];
+    for (int y = 0; y < level.height; ++y) {
+      for (int x = 0; x < level.width; ++x) {
+        TexelFit t;
+        t.model.params.diffuse = MipDiffuse(l, x, y);
+        if (MipHasLobe(l, x, y)) {
+          LafortuneLobe lobe;
+          lobe.cx = glm::dvec3(-0.5);
+          lobe.cy = glm::dvec3(-0.75);
+          lobe.cz = glm::dvec3(1.0);
+          lobe.n = glm::dvec3(3.0);
+          t.model.params.lobes.push_back(lobe);
+        }
+        level.texels.push_back(t);
+      }
+    }
+    r.levels.push_back(level);
+  }
+  WriteParamMipmap(ToParamMipmap(r), path);
+}
+
+// SPEC §3.3 for texel (x, y) of level l, in the surface frame (normal +z,
+// no lookup table): rho = l.z (rho_d + [Cx lx vx + Cy ly vy + Cz lz vz]^N),
+// [a]^N = 0 for a <= 0; the BRDF f = rho / l.z.
+glm::dvec3 MipExpected(int l, int x, int y, const glm::dvec3& wi,
+                       const glm::dvec3& wo, Quantity q) {
+  double lobe = 0.0;
+  if (MipHasLobe(l, x, y)) {
+    const double a = -0.5 * wi.x * wo.x - 0.75 * wi.y * wo.y + wi.z * wo.z;
+    lobe = a > 0.0 ? a * a * a : 0.0;
+  }
+  const glm::dvec3 f = MipDiffuse(l, x, y) + glm::dvec3(lobe);
+  return q == Quantity::kBrdf ? f : f * wi.z;
+}
+
+TEST(CliTest, EvalParameterMipmapAtTexels) {
+  const fs::path dir = TestDir();
+  const std::string exr = (dir / "P.exr").string();
+  WriteTestMip(exr);
+  const std::pair<glm::dvec3, glm::dvec3> pairs[] = {
+      {glm::normalize(glm::dvec3(0.3, 0.2, 0.9)),
+       glm::normalize(glm::dvec3(-0.35, -0.1, 0.8))},  // near the mirror
+      {glm::normalize(glm::dvec3(-0.6, 0.1, 0.5)),
+       glm::normalize(glm::dvec3(0.1, 0.7, 0.6))}};
+  const int sizes[3][2] = {{4, 2}, {2, 1}, {1, 1}};
+  for (int level = 0; level < 3; ++level) {
+    MeasurementTable table;
+    table.direction_columns = DirectionColumns::kVectors;
+    table.has_texels = true;
+    for (int y = 0; y < sizes[level][1]; ++y) {
+      for (int x = 0; x < sizes[level][0]; ++x) {
+        for (const auto& [wi, wo] : pairs) {
+          TableRow row;
+          row.wi = wi;
+          row.wo = wo;
+          row.s = x;
+          row.t = y;
+          table.rows.push_back(row);
+        }
+      }
+    }
+    const std::string dirs = (dir / "D.csv").string();
+    WriteTable(table, dirs);
+    ReadTableOptions read_options;
+    read_options.values_optional = true;
+    const MeasurementTable in = ReadTable(dirs, read_options).table;
+    for (Quantity q : {Quantity::kBrdf, Quantity::kCosineWeighted}) {
+      const std::string out = (dir / "O.csv").string();
+      std::vector<std::string> args = {"eval",   "--params",   exr,
+                                       "--dirs", dirs,         "--out",
+                                       out,      "--quantity", QuantityName(q)};
+      if (level > 0) {
+        args.push_back("--level");
+        args.push_back(std::to_string(level));
+      }
+      const RunResult r = RunClothfit(dir, args);
+      ASSERT_EQ(r.status, 0) << Describe(r);
+      EXPECT_EQ(r.err, "");
+      const MeasurementTable got = ReadTable(out).table;
+      EXPECT_EQ(got.quantity, q);
+      EXPECT_TRUE(got.has_texels);
+      ASSERT_EQ(got.rows.size(), in.rows.size());
+      for (size_t i = 0; i < got.rows.size(); ++i) {
+        const TableRow& row = in.rows[i];
+        EXPECT_EQ(got.rows[i].s, row.s);
+        EXPECT_EQ(got.rows[i].t, row.t);
+        ExpectRelativelyNear(
+            got.rows[i].value,
+            MipExpected(level, row.s, row.t, row.wi, row.wo, q), 1e-12,
+            "level " + std::to_string(level) + " " + QuantityName(q) + " row " +
+                std::to_string(i));
+      }
+    }
+  }
+}
+
+TEST(CliTest, EvalParameterMipmapBadInput) {
+  const fs::path dir = TestDir();
+  const std::string exr = (dir / "P.exr").string();
+  WriteTestMip(exr);
+  const std::string out = (dir / "O.csv").string();
+  const std::string no_texels = (dir / "no_texels.csv").string();
+  WriteText(no_texels,
+            "# clothfit-table 1\n"
+            "theta_i,phi_i,theta_o,phi_o\n"
+            "10,0,20,180\n");
+  ExpectBadInput(dir,
+                 {"eval", "--params", exr, "--dirs", no_texels, "--out", out},
+                 {no_texels, "s,t"});
+  // Level 0 is 4 x 2 texels, level 1 2 x 1.
+  const std::string texels = (dir / "texels.csv").string();
+  WriteText(texels,
+            "# clothfit-table 1\n"
+            "theta_i,phi_i,theta_o,phi_o,s,t\n"
+            "10,0,20,180,3,1\n"
+            "10,0,20,180,2,0\n");
+  const RunResult good = RunClothfit(
+      dir, {"eval", "--params", exr, "--dirs", texels, "--out", out});
+  ASSERT_EQ(good.status, 0) << Describe(good);  // the file is good at level 0
+  fs::remove(out);
+  ExpectBadInput(
+      dir,
+      {"eval", "--params", exr, "--dirs", texels, "--level", "1", "--out", out},
+      {texels + ":3:", "(3, 1)", "level 1", "2 x 1"});
+  const std::string s_out = (dir / "s_out.csv").string();
+  WriteText(s_out,
+            "# clothfit-table 1\n"
+            "theta_i,phi_i,theta_o,phi_o,s,t\n"
+            "10,0,20,180,3,1\n"
+            "10,0,20,180,4,0\n");
+  ExpectBadInput(dir, {"eval", "--params", exr, "--dirs", s_out, "--out", out},
+                 {s_out + ":4:", "(4, 0)", "level 0", "4 x 2"});
+  for (const char* level : {"3", "-1"}) {
+    ExpectBadInput(dir,
+                   {"eval", "--params", exr, "--dirs", texels, "--level", level,
+                    "--out", out},
+                   {"--level", exr, "0 to 2", std::string("got ") + level});
+  }
+  // --level only goes with a mip map.
+  const fs::path json_dir = DirWithInputs();
+  ExpectBadInput(json_dir,
+                 {"eval", "--params", (json_dir / "P.json").string(), "--dirs",
+                  (json_dir / "D.csv").string(), "--level", "1", "--out",
+                  (json_dir / "O.csv").string()},
+                 {"--level", ".exr"});
 }
 
 }  // namespace
