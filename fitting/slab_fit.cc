@@ -273,9 +273,8 @@ SlabValidity Validate(const std::vector<Sample>& samples, int channels,
         ss > 0.0 ? std::sqrt(se / ss) : 0.0));
   }
   v.above_paper_tau_limit = v.max_tau > kSlabPaperTauLimit;
+  v.estimated_model_error = SlabParamsSingleScatterError(p);
   for (int c = 0; c < 3; ++c) {
-    v.estimated_model_error = std::max(
-        v.estimated_model_error, SlabSingleScatterError(p.tau[c], p.albedo[c]));
     v.corrected_albedo[c] = SlabMultipleScatteringAlbedo(p.tau[c], p.albedo[c]);
   }
   v.multiple_scattering = v.estimated_model_error > kSlabRegimeTolerance;
