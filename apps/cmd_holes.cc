@@ -406,10 +406,11 @@ int RunHoles(int argc, char** argv) {
     std::cout << kHolesUsage;
     return 0;
   }
-  std::cerr << (sub.empty() ? std::string("error: clothfit holes needs a "
-                                          "subcommand\n")
-                            : "error: unknown holes subcommand '" + sub + "'\n")
-            << kHolesUsage;
+  // One line, like every usage error (issue 8).
+  std::cerr << "error: "
+            << (sub.empty() ? std::string("clothfit holes needs a subcommand")
+                            : "unknown holes subcommand '" + sub + "'")
+            << " (analyze, eval or truth; see 'clothfit holes --help')\n";
   return 2;
 }
 

@@ -78,6 +78,7 @@ PreviewImage RenderOption(const CommandArgs& args,
   if (IsHolesFile(path)) return RenderHolesFile(args, path, options);
   const ParamFile file = ReadParamFile(path);
   if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
+    NoteSlabRegime(*slab);  // SPEC §3.4: the tool says where it is inexact
     return RenderSlab(*slab, options);
   }
   return RenderCylinders(file.params, options);

@@ -201,10 +201,8 @@ TEST(HolesCliTest, BadInputIsExitTwoWithAClearMessage) {
       {{"fit", "--model", "holes", "--data", dirs, "--out", out}, "--mask"},
   };
   for (const auto& [args, piece] : cases) {
-    const RunResult r = RunClothfit(dir, args);
-    EXPECT_EQ(r.status, 2) << Describe(r);
-    EXPECT_NE(r.err.find(piece), std::string::npos)
-        << "'" << piece << "' not in: " << r.err;
+    // Exit 2, one "error: " line holding the piece, no output.
+    testing_util::ExpectBadInput(dir, args, {piece});
     EXPECT_FALSE(fs::exists(out)) << args.back();
   }
   // A reflectance table cannot be fitted.

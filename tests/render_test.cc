@@ -389,6 +389,29 @@ TEST(RenderCli, MipmapFileRendersTiledCylindersAndComparesWithAPreset) {
                  {"broken.exr"});
 }
 
+// SPEC §3.4: a slab outside the single-scattering regime is rendered, with
+// one note saying so; one within it gets none.
+TEST(RenderCli, SlabOutsideTheRegimeIsRenderedWithANote) {
+  const fs::path dir = TestDir();
+  WriteText(dir / "in.json", R"({"model": "slab", "tau": 0.001, "albedo": 1})");
+  WriteText(dir / "out.json",
+            R"({"model": "slab", "tau": 0.01, "albedo": 0.8})");
+  for (const char* name : {"in", "out"}) {
+    const RunResult r = RunClothfit(
+        dir, {"render", "--params",
+              (dir / (std::string(name) + ".json")).string(), "--size", "8",
+              "--out", (dir / (std::string(name) + ".exr")).string()});
+    ASSERT_EQ(r.status, 0) << Describe(r);
+    EXPECT_TRUE(fs::exists(dir / (std::string(name) + ".png")));
+    if (std::string(name) == "in") {
+      EXPECT_EQ(r.err, "");
+    } else {
+      EXPECT_EQ(r.err.rfind("note: ", 0), 0u) << r.err;
+      EXPECT_NE(r.err.find("tau = 0.01"), std::string::npos) << r.err;
+    }
+  }
+}
+
 TEST(RenderCli, BadInputExitsTwoAndWritesNothing) {
   const fs::path dir = TestDir();
   const std::string out = (dir / "r.exr").string();
