@@ -106,6 +106,10 @@ int RunPlot(int argc, char** argv) {
                         std::string(QuantityName(table.quantity)) + ")",
                     out_path);
   std::printf("wrote %s\n", out_path.c_str());
+  // SPEC §3.4: the tool says where the slab model is inexact.
+  if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
+    NoteSlabRegime(*slab);
+  }
   return 0;
 }
 

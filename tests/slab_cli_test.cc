@@ -280,6 +280,24 @@ TEST(SlabCli, FormulasNoteWhenOutsideTheRegime) {
       {"synth", "--model", "slab", "--params", out_params, "--mc", "--photons",
        "2000", "--theta-i", "30", "--theta-o", "0,60", "--out", t},
       t, {});
+  // A polar plot of the model against the table: the same note.
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--model", "slab", "--params", in_params,
+                              "--out", t})
+                .status,
+            0);
+  for (const std::string& params : {in_params, out_params}) {
+    const std::string png = (dir / "plot.png").string();
+    const RunResult r = RunClothfit(
+        dir, {"plot", "--params", params, "--data", t, "--out", png});
+    ASSERT_EQ(r.status, 0) << Describe(r);
+    EXPECT_TRUE(fs::exists(png));
+    if (params == in_params) {
+      EXPECT_EQ(r.err, "");
+    } else {
+      EXPECT_EQ(r.err.rfind("note: ", 0), 0u) << r.err;
+      EXPECT_NE(r.err.find("tau = 0.01"), std::string::npos) << r.err;
+    }
+  }
 }
 
 TEST(SlabCli, FitThatDoesNotConvergeExitsOne) {
