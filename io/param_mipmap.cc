@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <new>
 #include <nlohmann/json.hpp>
@@ -374,6 +375,16 @@ void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
 }
 
 ParamMipmap ReadParamMipmap(const std::string& path) {
+  // The EXR first: the file the user named.
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    Fail(path, std::string("cannot read: ") + std::strerror(ENOENT));
+  }
+  if (!std::filesystem::exists(path + ".json", error)) {
+    Fail(path + ".json",
+         "missing: the JSON index of the parameter mip map " + path +
+             " (written beside it by clothfit fit; keep the two together)");
+  }
   const Index index = ReadIndex(path + ".json");
   ParamMipmap mipmap;
   mipmap.channels = index.channels;
