@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "cli_test_util.h"
 #include "io/mask_io.h"
 #include "io/table.h"
-#include "io_test_util.h"
 #include "models/math.h"
+#include "tests/cli_test_util.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {

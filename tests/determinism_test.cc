@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "cli_test_util.h"
 #include "io/mask_io.h"
 #include "io/param_mipmap.h"
 #include "io/table.h"
-#include "io_test_util.h"
+#include "tests/cli_test_util.h"
+#include "tests/io_test_util.h"
 
 namespace clothfit {
 namespace {

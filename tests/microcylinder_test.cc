@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "conformance_util.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
+#include "tests/conformance_util.h"
 
 namespace clothfit {
 namespace {
