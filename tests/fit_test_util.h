@@ -2,12 +2,14 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "data_synthetic/synthetic_table.h"
+#include "models/lafortune.h"
 
 namespace clothfit {
 namespace testing_util {
@@ -40,6 +42,39 @@ inline std::vector<std::string> UndeterminedNames(const std::string& text) {
 inline bool Contains(const std::vector<std::string>& names,
                      const std::string& n) {
   return std::find(names.begin(), names.end(), n) != names.end();
+}
+
+// n x n hemisphere directions, uniform in (cos theta, phi) strata.
+inline std::vector<glm::dvec3> Hemisphere(int n, double phase = 0.0) {
+  std::vector<glm::dvec3> out;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double ct = (i + 0.5) / n;
+      const double st = std::sqrt(1.0 - ct * ct);
+      const double phi = 2.0 * kPi * (j + 0.5 + phase) / n;
+      out.push_back({st * std::cos(phi), st * std::sin(phi), ct});
+    }
+  }
+  return out;
+}
+
+// A cosine-weighted table of a Lafortune model, noise-free: every light
+// for each view (view-major).
+inline MeasurementTable LafortuneTable(const LafortuneModel& m,
+                                       const std::vector<glm::dvec3>& lights,
+                                       const std::vector<glm::dvec3>& views) {
+  MeasurementTable t;
+  t.quantity = Quantity::kCosineWeighted;
+  for (const glm::dvec3& v : views) {
+    for (const glm::dvec3& l : lights) {
+      TableRow r;
+      r.wi = l;
+      r.wo = v;
+      r.value = LafortuneRho(m, l, v);
+      t.rows.push_back(r);
+    }
+  }
+  return t;
 }
 
 }  // namespace testing_util

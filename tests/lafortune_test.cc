@@ -13,23 +13,13 @@
 #include "io/input_error.h"
 #include "io/params_json.h"
 #include "models/evaluate.h"
+#include "tests/fit_test_util.h"
 
 namespace clothfit {
 namespace {
 
-// n x n hemisphere directions, uniform in (cos theta, phi) strata.
-std::vector<glm::dvec3> Hemisphere(int n, double phase = 0.0) {
-  std::vector<glm::dvec3> out;
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const double ct = (i + 0.5) / n;
-      const double st = std::sqrt(1.0 - ct * ct);
-      const double phi = 2.0 * kPi * (j + 0.5 + phase) / n;
-      out.push_back({st * std::cos(phi), st * std::sin(phi), ct});
-    }
-  }
-  return out;
-}
+using testing_util::Hemisphere;
+using testing_util::LafortuneTable;
 
 LafortuneModel TruthModel(const std::vector<glm::dvec3>& views) {
   LafortuneModel m;
@@ -52,23 +42,6 @@ LafortuneModel TruthModel(const std::vector<glm::dvec3>& views) {
     m.lut.alpha.push_back(1.0);
   }
   return m;
-}
-
-MeasurementTable TableOf(const LafortuneModel& m,
-                         const std::vector<glm::dvec3>& lights,
-                         const std::vector<glm::dvec3>& views) {
-  MeasurementTable t;
-  t.quantity = Quantity::kCosineWeighted;
-  for (const glm::dvec3& v : views) {
-    for (const glm::dvec3& l : lights) {
-      TableRow r;
-      r.wi = l;
-      r.wo = v;
-      r.value = LafortuneRho(m, l, v);
-      t.rows.push_back(r);
-    }
-  }
-  return t;
 }
 
 TexelSamples AllSamples(const MeasurementTable& t) {
@@ -170,7 +143,7 @@ TEST(LafortuneLookupTable, ReproducesStoredViewsAndIsContinuous) {
 TEST(LafortuneFit, NoiseFreeDataRecoveredAtHeldOutDirections) {
   const std::vector<glm::dvec3> views = Hemisphere(8);
   const LafortuneModel truth = TruthModel(views);
-  const MeasurementTable table = TableOf(truth, views, views);
+  const MeasurementTable table = LafortuneTable(truth, views, views);
   LafortuneFitOptions options;
   options.lut_threshold = 1e-12;  // converge fully
   options.max_alternations = 60;
@@ -189,7 +162,7 @@ TEST(LafortuneFit, TiltedTexelFrameFromNormalColumnsIsRecovered) {
   const std::vector<glm::dvec3> views = Hemisphere(7);
   LafortuneModel truth = TruthModel(views);
   truth.normal = glm::normalize(glm::dvec3(0.25, -0.15, 1.0));
-  MeasurementTable table = TableOf(truth, views, views);
+  MeasurementTable table = LafortuneTable(truth, views, views);
   table.has_normal = true;
   for (TableRow& r : table.rows) r.normal = truth.normal;
   LafortuneFitOptions options;
@@ -247,7 +220,7 @@ TEST(LafortuneGonio, LookupTableLowersTheViewColourErrorByAtLeast30Percent) {
 TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
-  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  const TexelSamples samples = AllSamples(LafortuneTable(truth, views, views));
   LafortuneModel poor = truth, one_lobe = truth;
   poor.params.diffuse *= 3.0;
   one_lobe.params.lobes.resize(1);
@@ -265,7 +238,7 @@ TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
 TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
-  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  const TexelSamples samples = AllSamples(LafortuneTable(truth, views, views));
   LafortuneFitOptions cold, given;
   given.start = &truth;
   const LafortuneFitResult a = FitLafortune(samples, cold);
@@ -304,7 +277,7 @@ TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
 TEST(LafortuneFit, ConvergenceAndFinalCostAreReported) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
-  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  const TexelSamples samples = AllSamples(LafortuneTable(truth, views, views));
   LafortuneFitOptions capped;
   capped.lut_threshold = 0.0;  // never met
   capped.max_alternations = 3;
@@ -333,7 +306,7 @@ TEST(LafortuneFit, ConvergenceAndFinalCostAreReported) {
 TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
   const std::vector<glm::dvec3> views = Hemisphere(6);
   const LafortuneModel truth = TruthModel(views);
-  const TexelSamples samples = AllSamples(TableOf(truth, views, views));
+  const TexelSamples samples = AllSamples(LafortuneTable(truth, views, views));
   LafortuneFitOptions with, without;
   without.lookup_table = false;
   const double e_with = FitLafortune(samples, with).relative_rms;
@@ -354,14 +327,15 @@ TEST(LafortuneFit, EmptyAndDegenerateTexelsGiveFiniteResults) {
   zero.params.diffuse = glm::dvec3(0.0);
   zero.params.lobes.clear();
   const LafortuneFitResult r1 =
-      FitLafortune(AllSamples(TableOf(zero, views, views)), options);
+      FitLafortune(AllSamples(LafortuneTable(zero, views, views)), options);
   EXPECT_TRUE(r1.usable);
   EXPECT_TRUE(std::isfinite(r1.relative_rms));
   for (const glm::dvec3& t : r1.model.lut.color) {
     EXPECT_TRUE(std::isfinite(t.x + t.y + t.z));
   }
   // A single sample.
-  MeasurementTable one = TableOf(TruthModel(views), {views[0]}, {views[1]});
+  MeasurementTable one =
+      LafortuneTable(TruthModel(views), {views[0]}, {views[1]});
   const LafortuneFitResult r2 = FitLafortune(AllSamples(one), options);
   EXPECT_TRUE(std::isfinite(r2.rms));
   const glm::dvec3 v = LafortuneRho(r2.model, views[0], views[1]);
@@ -379,7 +353,7 @@ MeasurementTable SpatialTable(int width, int height, int n) {
     for (int s = 0; s < width; ++s) {
       LafortuneModel m = TruthModel(dirs);
       m.params.diffuse *= 1.0 + 0.2 * s + 0.1 * t;
-      MeasurementTable texel = TableOf(m, dirs, dirs);
+      MeasurementTable texel = LafortuneTable(m, dirs, dirs);
       for (TableRow& r : texel.rows) {
         r.s = s;
         r.t = t;
@@ -540,7 +514,7 @@ TEST(LafortuneMip, ToleranceChoosesTheSmallestSufficientLobeCount) {
   LafortuneModel diffuse = TruthModel(dirs);
   diffuse.params.lobes.clear();
   for (glm::dvec3& c : diffuse.lut.color) c = glm::dvec3(1.0);
-  MeasurementTable table = TableOf(diffuse, dirs, dirs);
+  MeasurementTable table = LafortuneTable(diffuse, dirs, dirs);
   table.has_texels = true;
   for (TableRow& r : table.rows) r.s = r.t = 0;
   LafortuneMipOptions options;

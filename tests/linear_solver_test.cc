@@ -102,27 +102,11 @@ TEST(LinearSolver, LafortuneFitsRecoverTheTruthWithEverySolver) {
   lobe.cz = {0.9, 0.95, 1.0};
   lobe.n = {8, 12, 15};
   truth.lobes = {lobe};
-  std::vector<glm::dvec3> dirs;
-  for (int i = 0; i < 8; ++i) {
-    for (int j = 0; j < 8; ++j) {
-      const double ct = (i + 0.5) / 8, st = std::sqrt(1.0 - ct * ct);
-      const double phi = 2.0 * kPi * (j + 0.5) / 8;
-      dirs.push_back({st * std::cos(phi), st * std::sin(phi), ct});
-    }
-  }
+  const std::vector<glm::dvec3> dirs = testing_util::Hemisphere(8);
   LafortuneModel model;
   model.params = truth;
-  MeasurementTable table;
-  table.quantity = Quantity::kCosineWeighted;
-  for (const glm::dvec3& v : dirs) {
-    for (const glm::dvec3& l : dirs) {
-      TableRow row;
-      row.wi = l;
-      row.wo = v;
-      row.value = LafortuneRho(model, l, v);
-      table.rows.push_back(row);
-    }
-  }
+  const MeasurementTable table =
+      testing_util::LafortuneTable(model, dirs, dirs);
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   const TexelSamples samples =
