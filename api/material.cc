@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "fitting/lafortune_mip.h"
 #include "io/input_error.h"
+#include "io/lafortune_mipmap.h"
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "io/text_util.h"
@@ -22,21 +22,29 @@ int TexelIndex(double u, int n) noexcept {
 
 }  // namespace
 
+Material::Level Material::OneTexel(const ModelParams& params,
+                                   const std::string& name) {
+  const std::string error = ValidateModel(params);
+  if (!error.empty()) throw InputError(name + ": " + error);
+  Level level;
+  level.texels.push_back(params);
+  return level;
+}
+
 Material Material::FromParams(const ModelParams& params) {
-  // Round trip through the file format: the one place that validates every
-  // model's ranges (io/params_json.cc) with the field name in the message.
-  const ParamFile file =
-      ParseParamFile(FormatParamFile(ParamFile{params, ""}), "<parameters>");
   Material m;
-  m.kind_ = ModelName(file.params);
-  m.levels_.resize(1);
-  m.levels_[0].texels.push_back(file.params);
+  m.kind_ = ModelName(params);
+  m.levels_.push_back(OneTexel(params, "<parameters>"));
   return m;
 }
 
 Material Material::Load(const std::string& path) {
   if (!text_util::EndsWith(path, ".exr")) {
-    return FromParams(ReadParamFile(path).params);
+    const ParamFile file = ReadParamFile(path);
+    Material m;
+    m.kind_ = ModelName(file.params);
+    m.levels_.push_back(OneTexel(file.params, path));
+    return m;
   }
   const ParamMipmap mipmap = ReadParamMipmap(path);
   Material m;

@@ -60,6 +60,10 @@ class Material {
     std::vector<ModelParams> texels;  // y * width + x
   };
 
+  // One parameter set, validated once at the boundary (models/evaluate.h
+  // ValidateModel); messages start with `name`.
+  static Level OneTexel(const ModelParams& params, const std::string& name);
+
   int ClampLevel(int level) const noexcept {
     const int last = static_cast<int>(levels_.size()) - 1;
     return level < 0 ? 0 : (level > last ? last : level);

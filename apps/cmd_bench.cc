@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "charts/bench.h"
-#include "charts/stability.h"
+#include "bench/bench.h"
+#include "bench/stability.h"
 #include "io/atomic_file.h"
 
 namespace clothfit {

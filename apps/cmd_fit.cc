@@ -13,55 +13,65 @@
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 #include "models/presets.h"
 
 namespace clothfit {
 
-void AddSolverOptions(CommandArgs* args) {
-  args->Option("loss", "L", "robust loss: none, huber or cauchy", "none");
-  args->Option("loss-scale", "S", "robust loss scale, in sigmas", "1");
-  args->Option("max-iterations", "N", "solver iteration cap", "200");
-  args->Option("threads", "N", "threads for residual evaluation", "1");
+void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
+                      bool robust_loss, const std::string& threads_help) {
+  if (robust_loss) {
+    args->Option("loss", "L", "robust loss: none, huber or cauchy", "none");
+    args->Option("loss-scale", "S", "robust loss scale, in sigmas",
+                 text_util::FormatNumber(defaults.loss_scale, 6));
+  }
+  args->Option("max-iterations", "N",
+               "solver iteration cap (per solve), 1 to " +
+                   std::to_string(kMaxSolverIterations),
+               std::to_string(defaults.max_iterations));
+  args->Option(
+      "threads", "N",
+      threads_help + ", 0 (every core) to " + std::to_string(kMaxSolverThreads),
+      std::to_string(defaults.num_threads));
   args->Option("linear-solver", "S",
                "linear solver of the solver's steps: " + LinearSolverNames(),
-               "dense_qr");
+               LinearSolverName(defaults.linear_solver));
 }
 
-LinearSolver LinearSolverOption(const CommandArgs& args) {
-  LinearSolver solver = LinearSolver::kDenseQr;
-  const std::string name = args.Get("linear-solver");
-  if (!ParseLinearSolver(name, &solver)) {
-    args.Fail("option '--linear-solver': expected " + LinearSolverNames() +
-              ", got '" + name + "'");
-  }
-  return solver;
-}
-
-SolverOptions ReadSolverOptions(const CommandArgs& args) {
+SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss) {
   SolverOptions s;
-  const std::string loss = args.Get("loss");
-  if (loss == "none") {
-    s.loss = Loss::kNone;
-  } else if (loss == "huber") {
-    s.loss = Loss::kHuber;
-  } else if (loss == "cauchy") {
-    s.loss = Loss::kCauchy;
-  } else {
-    args.Fail("option '--loss': expected none, huber or cauchy, got '" + loss +
-              "'");
+  if (robust_loss) {
+    const std::string loss = args.Get("loss");
+    if (loss == "none") {
+      s.loss = Loss::kNone;
+    } else if (loss == "huber") {
+      s.loss = Loss::kHuber;
+    } else if (loss == "cauchy") {
+      s.loss = Loss::kCauchy;
+    } else {
+      args.Fail("option '--loss': expected none, huber or cauchy, got '" +
+                loss + "'");
+    }
+    s.loss_scale = args.GetDouble("loss-scale");
+    if (!(s.loss_scale > 0.0)) args.Fail("option '--loss-scale': must be > 0");
   }
-  s.loss_scale = args.GetDouble("loss-scale");
-  if (!(s.loss_scale > 0.0)) args.Fail("option '--loss-scale': must be > 0");
   const long iterations = args.GetInt("max-iterations");
-  if (iterations < 1 || iterations > 100000) {
-    args.Fail("option '--max-iterations': must be in [1, 100000]");
+  if (iterations < 1 || iterations > kMaxSolverIterations) {
+    args.Fail("option '--max-iterations': must be in [1, " +
+              std::to_string(kMaxSolverIterations) + "]");
   }
   s.max_iterations = static_cast<int>(iterations);
   const long threads = args.GetInt("threads");
-  if (threads < 1 || threads > 256)
-    args.Fail("option '--threads': must be in [1, 256]");
+  if (threads < 0 || threads > kMaxSolverThreads) {
+    args.Fail("option '--threads': must be in [0, " +
+              std::to_string(kMaxSolverThreads) + "]");
+  }
   s.num_threads = static_cast<int>(threads);
-  s.linear_solver = LinearSolverOption(args);
+  const std::string name = args.Get("linear-solver");
+  if (!ParseLinearSolver(name, &s.linear_solver)) {
+    args.Fail("option '--linear-solver': expected " + LinearSolverNames() +
+              ", got '" + name + "'");
+  }
   // A progress line on a terminal, overwritten in place.
   if (isatty(STDERR_FILENO)) {
     s.progress = [](const std::string& what) {
@@ -91,24 +101,12 @@ MeasurementTable ReadDataOption(const CommandArgs& args) {
   return ReadTableOption(args, args.Required("data"));
 }
 
-int CountNotReflection(const MeasurementTable& table, const std::string& source,
-                       const std::string& model) {
-  const size_t count = static_cast<size_t>(
-      std::count_if(table.rows.begin(), table.rows.end(),
-                    [](const TableRow& row) { return !IsReflectionRow(row); }));
-  if (count > 0 && count == table.rows.size()) {
-    throw InputError(source +
-                     ": no row has both the light and the view above the "
-                     "surface (wi.z and wo.z > 0); the " +
-                     model + " model is reflection only");
-  }
-  if (count > 0) {
-    std::cerr << "warning: " << count
-              << " row(s) are not reflection (wi.z or wo.z <= 0) and are not "
-                 "used: the "
-              << model << " model is reflection only\n";
-  }
-  return static_cast<int>(count);
+void WarnNotReflection(const FitReport& report, const std::string& model) {
+  if (report.rows_not_used == 0) return;
+  std::cerr << "warning: " << report.rows_not_used
+            << " row(s) are not reflection (wi.z or wo.z <= 0) and are not "
+               "used: the "
+            << model << " model is reflection only\n";
 }
 
 int FinishFit(const FitReport& report, const std::vector<double>& truth,
@@ -204,7 +202,8 @@ int RunFit(int argc, char** argv) {
   args.Option("out", "P.json", "result parameter file");
   args.Option("fix", "A,B", "parameters held fixed (e.g. eta,kd or albedo)");
   args.Option("free", "A,B", "free only these parameters");
-  AddSolverOptions(&args);
+  AddSolverOptions(&args, SolverOptions(), true,
+                   "threads for residual evaluation");
   args.Option("starts", "N",
               "multi-start: solve from the N best-ranked starting points "
               "(default: 2 thread, 1 cloth)");
@@ -224,7 +223,7 @@ int RunFit(int argc, char** argv) {
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
   CheckWritable(args.Required("out"));  // before the fit, not after
-  const SolverOptions solver = ReadSolverOptions(args);
+  const SolverOptions solver = ReadSolverOptions(args, true);
   if (model == "slab") return RunFitSlab(args, solver);
   if (args.Has("per-channel-tau")) args.Fail("--per-channel-tau is for slab");
   const MeasurementTable table = ReadDataOption(args);
@@ -264,7 +263,7 @@ int RunFit(int argc, char** argv) {
     }
     std::vector<double> truth_values;
     if (truth && std::holds_alternative<ThreadParams>(truth->params)) {
-      truth_values.resize(ThreadParams::kSize);
+      truth_values.resize(kThreadFlatSize);
       ToArray(std::get<ThreadParams>(truth->params), truth_values.data());
     }
     if (tolerance) {
@@ -298,15 +297,15 @@ int RunFit(int argc, char** argv) {
           ClothParameterValues(std::get<ClothParams>(truth->params), layout);
     }
     if (tolerance) {
-      CountNotReflection(table, args.Get("data"), "cloth");
       const ClothSelection sel =
           SelectClothModel(table, layout, options, *tolerance);
+      WarnNotReflection(sel.fit.report, "cloth");
       // The chosen weave may have fewer samples: no per-entry truth column.
       return Finish(args, sel.fit.params, sel.fit.report, truth_values,
                     &sel.report);
     }
-    CountNotReflection(table, args.Get("data"), "cloth");
     const ClothFitResult r = FitCloth(table, layout, options);
+    WarnNotReflection(r.report, "cloth");
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }
   args.Fail(

@@ -68,13 +68,15 @@ int RunFitLafortune(int argc, char** argv) {
               "stop alternating when T changes less than this (mean relative)",
               "0.1");
   args.Option("alternations", "N", "cap on lobe/T alternations", "10");
-  args.Option("max-iterations", "N", "Levenberg-Marquardt iterations per pass",
-              "50");
-  args.Option("threads", "N", "texel fits in parallel (0: all cores)", "0");
-  args.Option(
-      "linear-solver", "S",
-      "linear solver of the Levenberg-Marquardt steps: " + LinearSolverNames(),
-      "dense_normal_cholesky");
+  // The defaults of a texel fit: a few iterations per pass, the normal
+  // equations (fitting/lafortune_fit.h), every core for the texels.
+  const LafortuneMipOptions defaults;
+  SolverOptions solver_defaults;
+  solver_defaults.max_iterations = defaults.fit.max_iterations;
+  solver_defaults.num_threads = defaults.threads;
+  solver_defaults.linear_solver = defaults.fit.linear_solver;
+  AddSolverOptions(&args, solver_defaults, false,
+                   "texel fits in parallel (iterations: per pass)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out_path = args.Required("out");
@@ -115,21 +117,14 @@ int RunFitLafortune(int argc, char** argv) {
     args.Fail("option '--lut-threshold': must be >= 0");
   }
   const long alternations = args.GetInt("alternations");
-  const long iterations = args.GetInt("max-iterations");
-  const long threads = args.GetInt("threads");
   if (alternations < 1 || alternations > 1000) {
     args.Fail("option '--alternations': must be in [1, 1000]");
   }
-  if (iterations < 1 || iterations > 10000) {
-    args.Fail("option '--max-iterations': must be in [1, 10000]");
-  }
-  if (threads < 0 || threads > 256) {
-    args.Fail("option '--threads': must be in [0, 256]");
-  }
   options.fit.max_alternations = static_cast<int>(alternations);
-  options.fit.max_iterations = static_cast<int>(iterations);
-  options.threads = static_cast<int>(threads);
-  options.fit.linear_solver = LinearSolverOption(args);
+  const SolverOptions solver = ReadSolverOptions(args, false);
+  options.fit.max_iterations = solver.max_iterations;
+  options.threads = solver.num_threads;
+  options.fit.linear_solver = solver.linear_solver;
   options.mip = args.Has("mip");
   if (args.Has("tolerance")) {
     options.tolerance = args.GetDouble("tolerance");
@@ -151,46 +146,9 @@ int RunFitLafortune(int argc, char** argv) {
           "a .json parameter file");
     }
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
-    const ViewIndex views(table);
-    std::vector<size_t> rows(table.rows.size());
-    for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
-    const int skipped = CountNotReflection(table, source, "lafortune");
-    const TexelFit best = FitTexelRows(table, views, rows, options);
-    std::printf(
-        "lafortune fit: %s (%s), %d lobe(s), %d alternation(s), %d "
-        "iterations\ncost %.6g, rms %.4g, relative rms %.4g over %zu rows\n",
-        !best.usable     ? "FAILED"
-        : best.converged ? "converged"
-                         : "usable, not converged",
-        best.termination.c_str(), best.lobes, best.alternations,
-        best.iterations, best.final_cost, best.rms, best.relative_rms,
-        rows.size() - skipped);
-    if (!best.usable) {
-      std::cerr << "error: the fit did not reach a usable solution: "
-                << best.message << "; nothing written\n";
-      return 1;
-    }
-    nlohmann::ordered_json fit;
-    fit["usable"] = true;
-    fit["converged"] = best.converged;
-    fit["termination"] = best.termination;
-    fit["final_cost"] = best.final_cost;
-    fit["lobes"] = best.lobes;
-    fit["alternations"] = best.alternations;
-    fit["iterations"] = best.iterations;
-    fit["rms"] = best.rms;
-    fit["relative_rms"] = best.relative_rms;
-    fit["lut_change"] = best.lut_change;
-    fit["rows"] = rows.size() - skipped;
-    WriteParamFile(ParamFile{best.model, fit.dump()}, out_path);
-    std::printf("wrote %s\n", out_path.c_str());
-    if (!best.converged) {
-      std::cerr << "error: the fit stopped without converging: "
-                << best.termination
-                << " (raise --alternations or --lut-threshold)\n";
-      return 1;
-    }
-    return 0;
+    const LafortuneFitResult fit = FitLafortuneTable(table, options);
+    WarnNotReflection(fit.report, "lafortune");
+    return FinishFit(args, fit.params, fit.report, {}, FitExtras());
   }
 
   if (!text_util::EndsWith(out_path, ".exr")) {
@@ -200,63 +158,38 @@ int RunFitLafortune(int argc, char** argv) {
   }
   if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
   const LafortuneMipResult result = FitLafortuneMip(table, options);
-  int unusable = 0, not_converged = 0;
-  std::string first_unusable, first_not_converged;  // where, and why
-  double worst = 0.0;
-  for (size_t l = 0; l < result.levels.size(); ++l) {
-    const LafortuneLevel& level = result.levels[l];
-    for (size_t i = 0; i < level.texels.size(); ++i) {
-      const TexelFit& t = level.texels[i];
-      const std::string where = "level " + std::to_string(l) + ", texel (" +
-                                std::to_string(i % level.width) + ", " +
-                                std::to_string(i / level.width) + "): ";
-      if (!t.usable && unusable++ == 0) first_unusable = where + t.message;
-      if (t.usable && !t.converged && not_converged++ == 0) {
-        first_not_converged = where + t.termination;
-      }
-      worst = std::max(worst, t.relative_rms);
-    }
-  }
+  const LafortuneMipSummary summary = SummarizeLafortuneMip(result);
   std::printf(
       "lafortune fits: %d texel fit(s) over %zu level(s) in %.2f s "
       "(%.1f fits/s), worst relative rms %.4g\n",
       result.fits, result.levels.size(), result.seconds,
-      result.fits / std::max(result.seconds, 1e-9), worst);
-  for (size_t l = 0; l < result.levels.size(); ++l) {
-    const LafortuneLevel& level = result.levels[l];
-    double sum = 0.0, view_sum = 0.0, alternations = 0.0, iterations = 0.0;
-    int counts[4] = {0, 0, 0, 0};
-    for (const TexelFit& t : level.texels) {
-      sum += t.relative_rms;
-      view_sum += t.view_relative_rms;
-      alternations += t.alternations;
-      iterations += t.iterations;
-      ++counts[std::clamp(t.lobes, 0, 3)];
-    }
-    const double n = static_cast<double>(level.texels.size());
+      result.fits / std::max(result.seconds, 1e-9), summary.worst_relative_rms);
+  for (size_t l = 0; l < summary.levels.size(); ++l) {
+    const LafortuneLevelSummary& level = summary.levels[l];
     std::printf(
         "  level %zu: %dx%d, %zu samples, mean relative rms %.4g (per-view "
         "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d, per fit %.1f "
         "alternations, %.0f solver iterations\n",
-        l, level.width, level.height, level.samples, sum / n, view_sum / n,
-        counts[0], counts[1], counts[2], counts[3], alternations / n,
-        iterations / n);
+        l, level.width, level.height, level.samples, level.mean_relative_rms,
+        level.mean_view_relative_rms, level.lobe_counts[0],
+        level.lobe_counts[1], level.lobe_counts[2], level.lobe_counts[3],
+        level.mean_alternations, level.mean_iterations);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
-  if (not_converged > 0) {
+  if (summary.not_converged > 0) {
     // A texel whose lookup table still moved at the cap is usable; the map
     // is written and the count reported (docs/decisions.md).
-    std::cerr << "warning: " << not_converged << " of " << result.fits
+    std::cerr << "warning: " << summary.not_converged << " of " << result.fits
               << " texel fit(s) stopped at the alternation cap; the first at "
-              << first_not_converged
+              << summary.first_not_converged
               << " (raise --alternations or --lut-threshold)\n";
   }
-  if (unusable > 0) {
-    std::cerr << "error: " << unusable
+  if (summary.unusable > 0) {
+    std::cerr << "error: " << summary.unusable
               << " texel fit(s) reached no usable solution (zero in the "
                  "output); the first at "
-              << first_unusable << "\n";
+              << summary.first_unusable << "\n";
     return 1;
   }
   return 0;

@@ -10,15 +10,17 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "bench/hole_charts.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/holes_fit.h"
-#include "holes/hole_charts.h"
 #include "holes/hole_exr.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/mask_io.h"
+#include "io/params_json.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -115,15 +117,22 @@ glm::dvec3 WallColorOption(const CommandArgs& args) {
   return glm::dvec3(values[0], values[1], values[2]);
 }
 
+// The holes parameters of the file of option `option`.
+HolesParams HolesParamsOption(const CommandArgs& args,
+                              const std::string& option) {
+  const std::string path = args.Get(option);
+  return ModelOf<HolesModel>(ReadParamFile(path), path).params;
+}
+
 HolesParams ModelOption(const CommandArgs& args) {
   HolesParams params;
   if (args.Has("params") == args.Has("thickness")) {
     args.Fail("give exactly one of --thickness H and --params P.json");
   }
-  if (args.Has("params")) return ReadHolesParamFile(args.Get("params")).params;
+  if (args.Has("params")) return HolesParamsOption(args, "params");
   params.thickness_texels = args.GetDouble("thickness");
   params.wall_color = WallColorOption(args);
-  const std::string invalid = ValidateHolesParams(params);
+  const std::string invalid = ValidateParams(params);
   if (!invalid.empty()) args.Fail(invalid);
   return params;
 }
@@ -138,20 +147,20 @@ MeasurementTable DirectionsTable(const CommandArgs& args) {
   return table;
 }
 
-// Fills the table with per-row values, one channel when the wall colour is
-// grey, and names the model in its metadata.
-void FillTable(const CommandArgs& args, const HolesParams& params,
-               const std::function<HoleRatios(const glm::dvec3&)>& ratios,
-               MeasurementTable* table) {
+// Fills the table with the transmittance at each row's view, one channel
+// when the wall colour is grey, and names the model in its metadata.
+void FillTable(
+    const CommandArgs& args, const HolesParams& params,
+    const std::function<glm::dvec3(const glm::dvec3&)>& transmittance,
+    MeasurementTable* table) {
   const glm::dvec3& c = params.wall_color;
   table->channels = c.x == c.y && c.y == c.z ? 1 : 3;
   table->SetMeta("model", "holes");
   table->SetMeta("mask", args.Get("mask"));
-  char h[32];
-  std::snprintf(h, sizeof(h), "%.17g", params.thickness_texels);
-  table->SetMeta("thickness_texels", h);
+  table->SetMeta(kHolesThickness.name,
+                 text_util::FormatNumber(params.thickness_texels));
   for (TableRow& row : table->rows) {
-    row.value = HolesTransmittance(params, ratios(row.wo));
+    row.value = transmittance(row.wo);
     row.sigma = glm::dvec3(1.0);
   }
 }
@@ -328,12 +337,11 @@ int RunHolesEval(int argc, char** argv) {
   }
   const std::string out = args.Required("out");
   MeasurementTable table = DirectionsTable(args);
-  const LevelTexels texels = GatherLevel(texture, level);
+  const HolesTile tile = HolesTileOf(texture, method, level);
   FillTable(
       args, params,
       [&](const glm::dvec3& wo) {
-        return TileRatios(texels, method,
-                          ViewOffset(params.thickness_texels, wo));
+        return HolesTransmittance(params, tile, wo);
       },
       &table);
   table.SetMeta("method", HoleMethodName(method));
@@ -373,7 +381,9 @@ int RunTruth(int argc, char** argv) {
   FillTable(
       args, params,
       [&](const glm::dvec3& wo) {
-        return HoleTruth(mask, ViewOffset(params.thickness_texels, wo), tile);
+        return TransmittanceOfRatios(
+            params,
+            HoleTruth(mask, ViewOffset(params.thickness_texels, wo), tile));
       },
       &table);
   table.SetMeta("method", "truth (2D DDA)");
@@ -437,23 +447,23 @@ int RunFitHoles(int argc, char** argv) {
   args.Option("fix", "A,B", "parameters held fixed");
   args.Option("free", "A,B", "free only these parameters");
   AddMethodOptions(&args);
-  AddSolverOptions(&args);
+  AddSolverOptions(&args, SolverOptions(), true,
+                   "threads for residual evaluation");
   args.Option("truth", "P.json", "print these true values beside the fit");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out = args.Required("out");
   CheckWritable(out);  // before the fit, not after
   HolesFitOptions options;
-  options.solver = ReadSolverOptions(args);
-  options.method = MethodOption(args);
+  options.solver = ReadSolverOptions(args, true);
+  const HoleMethod method = MethodOption(args);
   options.fit_wall_color = args.Has("fit-wall-color");
   options.fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
   options.free_only = SplitList(args.Has("free") ? args.Get("free") : "");
   if (args.Has("init") && args.Has("thickness")) {
     args.Fail("give at most one of --init and --thickness");
   }
-  if (args.Has("init"))
-    options.init = ReadHolesParamFile(args.Get("init")).params;
+  if (args.Has("init")) options.init = HolesParamsOption(args, "init");
   if (args.Has("thickness")) {
     options.init = HolesParams();
     options.init->thickness_texels = args.GetDouble("thickness");
@@ -461,22 +471,24 @@ int RunFitHoles(int argc, char** argv) {
   const MeasurementTable table = ReadDataOption(args);
   const Mask mask = LoadMask(args);
   const HoleTexture texture =
-      AnalyzeMask(mask, options.method == HoleMethod::kExtension);
-  options.level = LevelOption(args, texture);
+      AnalyzeMask(mask, method == HoleMethod::kExtension);
+  const HolesTile tile =
+      HolesTileOf(texture, method, LevelOption(args, texture));
   std::vector<double> truth;
   if (args.Has("truth")) {
-    truth.resize(HolesParams::kSize);
-    ToArray(ReadHolesParamFile(args.Get("truth")).params, truth.data());
+    const HolesParams p = HolesParamsOption(args, "truth");
+    truth.resize(FlatSize(p));
+    ToArray(p, truth.data());
   }
-  const HolesFitResult fit = FitHoles(table, texture, options);
-  HolesParamFile file;
-  file.params = fit.params;
-  file.mask = args.Get("mask");
-  file.threshold = args.GetDouble("threshold");
-  file.method = HoleMethodName(options.method);
+  const HolesFitResult fit = FitHoles(table, tile, options);
+  ParamFile file;
+  file.params = HolesModel{fit.params, nullptr};
+  file.holes.path = args.Get("mask");
+  file.holes.threshold = args.GetDouble("threshold");
+  file.holes.method = method;
   return FinishFit(fit.report, truth, out, [&](const std::string& fit_json) {
     file.fit_json = fit_json;
-    WriteHolesParamFile(file, out);
+    WriteParamFile(file, out);
   });
 }
 

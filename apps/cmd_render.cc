@@ -1,5 +1,5 @@
-// clothfit render: preview renders of a parameter file (issue 9;
-// render/preview.h): the cloth on cylinders in three orientations (the
+// clothfit render: preview renders of a parameter file
+// (render/preview.h): the cloth on cylinders in three orientations (the
 // paper's Fig. 12), a slab front- and back-lit over a checker, a hole
 // texture on tilted panels; a Lafortune parameter mip map (.exr) tiled over
 // the cylinders, each pixel reading the level that matches its footprint; with
@@ -8,55 +8,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <vector>
-#include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
-#include "io/mask_io.h"
 #include "io/text_util.h"
 #include "models/presets.h"
 #include "render/preview.h"
 
 namespace clothfit {
 namespace {
-
-// Whether a parameter file is a holes file (not a ModelParams). A file
-// that is not JSON is left to ReadParamFile's message.
-bool IsHolesFile(const std::string& path) {
-  const nlohmann::json j =
-      nlohmann::json::parse(ReadFileToString(path), nullptr, false);
-  return j.is_object() && j.contains("model") && j["model"] == "holes";
-}
-
-PreviewImage RenderHolesFile(const CommandArgs& args, const std::string& path,
-                             const PreviewOptions& options) {
-  const HolesParamFile file = ReadHolesParamFile(path);
-  std::string mask_path = args.Has("mask") ? args.Get("mask") : "";
-  if (mask_path.empty() && !file.mask.empty()) {
-    mask_path =
-        (std::filesystem::path(path).parent_path() / file.mask).string();
-  }
-  if (mask_path.empty()) {
-    args.Fail(path + ": a holes file needs its mask: give --mask M.png");
-  }
-  MaskReadOptions mask_options;
-  mask_options.threshold = file.threshold;
-  const Mask mask = ReadMask(mask_path, mask_options);
-  const std::optional<HoleMethod> method =
-      ParseHoleMethod(file.method.empty() ? "extension" : file.method);
-  if (!method) args.Fail(path + ": method: unknown '" + file.method + "'");
-  const HoleTexture texture =
-      AnalyzeMask(mask, *method == HoleMethod::kExtension);
-  const LevelTexels texels = GatherLevel(texture, texture.counts.levels() - 1);
-  const HolesParams& p = file.params;
-  return RenderHoles(
-      p,
-      [&](const glm::dvec3& wo) {
-        return TileRatios(texels, *method, ViewOffset(p.thickness_texels, wo));
-      },
-      options);
-}
 
 // The render of --FILE_OPTION P.json or --PRESET_OPTION NAME; a slab's
 // parameters are added to *slabs (for the regime note, once written).
@@ -78,8 +39,12 @@ PreviewImage RenderOption(const CommandArgs& args,
     return RenderCylinders(MipmapRho(Material::Load(path), options.tile),
                            options);
   }
-  if (IsHolesFile(path)) return RenderHolesFile(args, path, options);
   const ParamFile file = ReadParamFile(path);
+  if (std::holds_alternative<HolesModel>(file.params)) {
+    return RenderHoles(
+        LoadHolesModel(file, path, args.Has("mask") ? args.Get("mask") : ""),
+        options);
+  }
   if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
     slabs->push_back(*slab);
     return RenderSlab(*slab, options);

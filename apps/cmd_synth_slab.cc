@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
-#include "data_synthetic/slab_error_map.h"
+#include "bench/slab_error_chart.h"
 #include "data_synthetic/slab_monte_carlo.h"
 #include "data_synthetic/synthetic_table.h"
 
@@ -56,7 +56,7 @@ SlabParams ParamsOption(const CommandArgs& args) {
   }
   p.tau = RgbOption(args, "tau");
   p.albedo = RgbOption(args, "albedo");
-  const std::string e = ValidateSlabParams(p);
+  const std::string e = ValidateParams(p);
   if (!e.empty()) args.Fail(e);
   return p;
 }

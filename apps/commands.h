@@ -56,14 +56,14 @@ std::string ModelArgument(int argc, char** argv, int first = 2);
 // Direct transmittance is exact and needs no note.
 void NoteSlabRegime(const SlabParams& p);
 
-// The solver options of a fit command: --loss, --loss-scale,
-// --max-iterations and --threads (apps/cmd_fit.cc), and their values (with
-// a progress line on a terminal).
-void AddSolverOptions(CommandArgs* args);
-SolverOptions ReadSolverOptions(const CommandArgs& args);
-// --linear-solver (fitting/linear_solver.h): an unknown name fails with
-// the option's name and the known ones.
-LinearSolver LinearSolverOption(const CommandArgs& args);
+// The solver options of a fit command (fitting/fit_result.h SolverOptions,
+// the same ranges for every fit): --max-iterations, --threads (what runs
+// on them: `threads_help`), --linear-solver, and with `robust_loss`
+// --loss and --loss-scale; `defaults` are the command's. Reading them
+// adds a progress line on a terminal.
+void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
+                      bool robust_loss, const std::string& threads_help);
+SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss);
 
 // Reads the table at `path`, dropping invalid rows (with a warning naming
 // the first) when the command has --skip-invalid and it is given.
@@ -72,12 +72,9 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
 // The table of --data, with --skip-invalid (a warning says how many rows
 // were dropped).
 MeasurementTable ReadDataOption(const CommandArgs& args);
-// For a reflection-only model (`model`: "cloth", "lafortune"): the number
-// of rows of `table` (read from `source`) with the light or the view below
-// the surface, which the fit leaves out; a warning on stderr says how many.
-// Throws InputError naming `source` when no row is left.
-int CountNotReflection(const MeasurementTable& table, const std::string& source,
-                       const std::string& model);
+// A warning on stderr when a reflection-only model's fit left table rows
+// out (report.rows_not_used).
+void WarnNotReflection(const FitReport& report, const std::string& model);
 
 // The end of a fit command: prints `preface` and the report's summary
 // (with `truth`, may be empty), and when the fit is usable calls `write`

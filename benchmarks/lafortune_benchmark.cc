@@ -44,10 +44,10 @@ void Run(benchmark::State& state, int texels, const LafortuneMipOptions& o) {
     const LafortuneMipResult r = FitLafortuneMip(table, o);
     fits = r.fits;
     error = view_error = iterations = 0.0;
-    for (const TexelFit& t : r.levels[0].texels) {
-      error += t.relative_rms;
-      view_error += t.view_relative_rms;
-      iterations += t.iterations;
+    for (const LafortuneFitResult& t : r.levels[0].texels) {
+      error += t.report.relative_rms;
+      view_error += t.report.view_relative_rms;
+      iterations += t.report.iterations;
     }
     const double n = static_cast<double>(r.levels[0].texels.size());
     error /= n;

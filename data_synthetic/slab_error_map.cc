@@ -5,23 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "charts/heat_map.h"
 #include "data_synthetic/slab_monte_carlo.h"
-#include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
-namespace {
-
-std::string Short(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
-  return text;
-}
-
-}  // namespace
-
 SlabErrorMap ComputeSlabErrorMap(const SlabErrorMapOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   if (options.taus.empty() || options.albedos.empty()) {
@@ -51,7 +40,7 @@ SlabErrorMap ComputeSlabErrorMap(const SlabErrorMapOptions& options) {
       glm::dvec3 se(0.0), ss(0.0), noise(0.0), worst(0.0);
       for (const TableRow& row : table.rows) {
         const glm::dvec3 model =
-            SlabValue(mc.params, row.wi, row.wo, Quantity::kBrdf);
+            Value(mc.params, row.wi, row.wo, Quantity::kBrdf);
         const glm::dvec3 d = model - row.value;
         se += d * d;
         ss += row.value * row.value;
@@ -88,50 +77,18 @@ std::string SlabErrorMapCsv(const SlabErrorMap& map) {
       "tau,albedo,relative_rms_error,max_relative_error,relative_noise,"
       "estimated_error\n";
   for (const SlabErrorCell& cell : map.cells) {
-    char line[200];
-    std::snprintf(line, sizeof(line), "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
-                  cell.tau, cell.albedo, cell.relative_rms_error,
-                  cell.max_relative_error, cell.relative_noise,
-                  cell.estimated_error);
-    out += line;
+    const double values[] = {cell.tau,
+                             cell.albedo,
+                             cell.relative_rms_error,
+                             cell.max_relative_error,
+                             cell.relative_noise,
+                             cell.estimated_error};
+    for (size_t k = 0; k < 6; ++k) {
+      out += (k ? "," : "") + text_util::FormatNumber(values[k]);
+    }
+    out += "\n";
   }
   return out;
-}
-
-void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
-                       const std::string& csv_path) {
-  const SlabErrorMapOptions& o = map.options;
-  HeatMap chart;
-  chart.title =
-      "single-scattering slab vs Monte Carlo: relative rms error of f_r, f_t";
-  chart.x_title = "optical thickness tau";
-  chart.y_title = "albedo A";
-  for (double tau : o.taus) chart.x_labels.push_back(Short(tau));
-  const size_t n_tau = o.taus.size();
-  HeatMapPanel panel;
-  for (size_t a = o.albedos.size(); a-- > 0;) {  // highest albedo on top
-    chart.y_labels.push_back(Short(o.albedos[a]));
-    for (size_t t = 0; t < n_tau; ++t) {
-      const SlabErrorCell& cell = map.cells[a * n_tau + t];
-      panel.values.push_back(cell.relative_rms_error);
-      char text[32];
-      std::snprintf(text, sizeof(text), "%.2g%%",
-                    100.0 * cell.relative_rms_error);
-      panel.cell_text.push_back(text);
-    }
-  }
-  chart.panels = {panel};
-  chart.lo = 1e-3;
-  chart.hi = 1.0;
-  chart.log_scale = true;
-  chart.legend = "rel. rms error";
-  chart.outline_above = true;
-  chart.threshold = 0.01;
-  chart.threshold_label = "red outline: error > 1 % (outside the regime)";
-  // Both written before either is renamed into place would need a
-  // transaction; the CSV goes first so that a chart never lacks its data.
-  WriteFileAtomically(csv_path, SlabErrorMapCsv(map));
-  WriteHeatMapPng(chart, png_path);
 }
 
 }  // namespace clothfit

@@ -53,10 +53,4 @@ SlabErrorMap ComputeSlabErrorMap(const SlabErrorMapOptions& options);
 // max_relative_error,relative_noise,estimated_error, one row per cell.
 std::string SlabErrorMapCsv(const SlabErrorMap& map);
 
-// Writes the PNG heat map (columns tau, rows albedo with the highest on
-// top, colour log10 of the relative rms error, cells above 1 % outlined)
-// and the CSV, each atomically.
-void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
-                       const std::string& csv_path);
-
 }  // namespace clothfit

@@ -173,7 +173,7 @@ void Estimate(const Tally& tally, int k, int64_t n, int channel,
 }
 
 void Validate(const SlabMonteCarloOptions& o) {
-  const std::string e = ValidateSlabParams(o.params);
+  const std::string e = ValidateParams(o.params);
   if (!e.empty()) throw InputError("slab Monte Carlo: " + e);
   auto check_angles = [](const std::vector<double>& list, const char* name) {
     if (list.empty()) {

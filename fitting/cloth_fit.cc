@@ -1,13 +1,12 @@
 #include "fitting/cloth_fit.h"
 
-#include <ceres/ceres.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
 
 #include "fitting/least_squares.h"
+#include "fitting/model_residual_internal.h"
 #include "fitting/start_search.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
@@ -16,20 +15,19 @@
 namespace clothfit {
 namespace {
 
-// Parameter vector: per thread j, the ThreadParams layout (7 entries) then
+// Parameter vector: per thread j, the thread's table (7 entries) then
 // [coverage, offset_scale]; the thread's tangent offsets are offset_scale
-// times the initial ones. Ceres sees one block per thread's ThreadParams
-// and, only when some coverage or offset_scale is free, one [coverage,
-// offset_scale] block per thread: fewer Jet lanes when they are fixed.
+// times the initial ones. Then the scale. Ceres sees one block per
+// thread's parameters and, only when some coverage or offset_scale is
+// free, one [coverage, offset_scale] block per thread.
 constexpr int kWeaveSize = 2;
-constexpr int kPerThread = ThreadParams::kSize + kWeaveSize;
+constexpr int kPerThread = kThreadFlatSize + kWeaveSize;
 
 // What stays fixed through a fit, shared by all residuals.
 struct Weave {
   ClothParams layout;          // directions, base offsets, fixed values
   bool weave_blocks = false;   // coverage/offset_scale blocks passed to Ceres
   bool shared_albedo = false;  // every thread uses thread 0's albedo
-  bool fit_scale = false;      // a last block [scale] multiplies the model
 };
 
 // The tangent samples of one row, computed once when the directions and the
@@ -86,7 +84,7 @@ ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
     const ClothThread& base = weave.layout.threads[j];
     ClothThreadT<T>& th = c.threads[j];
     th.direction = base.direction;
-    th.params = ThreadParamsFromArray(blocks[stride * j]);
+    FromArray(blocks[stride * j], &th.params);
     if (weave.shared_albedo) {
       th.params.albedo = Vec3<T>(blocks[0][4], blocks[0][5], blocks[0][6]);
     }
@@ -102,151 +100,66 @@ ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
   return c;
 }
 
-// residual_c = (s model_c - measured_c) sqrt(weight) / sigma_c, c <
-// kChannels; s = 1 or, with fit_scale, a last block [s]. Ceres passes one
-// block per thread (two with weave blocks), 1 to 3 threads, (+ the scale):
-// one call operator per block count, 1 to 7.
-template <int kChannels>
-struct ClothResidual {
+// The cloth's value at row i: the blocks are, per thread, its parameters
+// and (with weave blocks) its [coverage, offset_scale]. With the offsets
+// fixed the row's tangent samples were computed once (`samples`);
+// otherwise they follow the blocks.
+struct ClothEvaluator {
+  const MeasurementTable* table;
   std::shared_ptr<const Weave> weave;
-  glm::dvec3 wi, wo, value, scale;
-  Quantity quantity;
-  // Set when the offsets are fixed: the row's samples, computed once.
-  std::shared_ptr<const RowSamples> samples;
+  std::vector<std::shared_ptr<const RowSamples>> samples;  // per row, or null
 
   template <typename T>
-  bool Residual(const T* const* blocks, T* residual) const {
-    Vec3<T> model;
-    if (samples) {
-      model = FromCosineWeighted(
-          ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false), *samples,
-                              wi.z),
-          wi.z, quantity);
-    } else {
-      model = ClothValue(ClothFromBlocks(*weave, blocks, true), Cast<T>(wi),
-                         Cast<T>(wo), quantity);
+  Vec3<T> operator()(const T* const* blocks, size_t i) const {
+    const TableRow& row = table->rows[i];
+    if (samples[i]) {
+      return ConvertQuantity(
+          ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false),
+                              *samples[i], row.wi.z),
+          Quantity::kCosineWeighted, table->quantity, row.wi.z);
     }
-    const size_t n = weave->layout.threads.size();
-    const T s = weave->fit_scale ? blocks[n * (weave->weave_blocks ? 2 : 1)][0]
-                                 : T(1.0);
-    for (int c = 0; c < kChannels; ++c) {
-      residual[c] = (s * model[c] - T(value[c])) * T(scale[c]);
-    }
-    return true;
-  }
-  template <typename T>
-  bool operator()(const T* b0, T* r) const {
-    const T* const b[] = {b0};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, T* r) const {
-    const T* const b[] = {b0, b1};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, const T* b2, T* r) const {
-    const T* const b[] = {b0, b1, b2};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
-                  T* r) const {
-    const T* const b[] = {b0, b1, b2, b3};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
-                  const T* b4, T* r) const {
-    const T* const b[] = {b0, b1, b2, b3, b4};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
-                  const T* b4, const T* b5, T* r) const {
-    const T* const b[] = {b0, b1, b2, b3, b4, b5};
-    return Residual(b, r);
-  }
-  template <typename T>
-  bool operator()(const T* b0, const T* b1, const T* b2, const T* b3,
-                  const T* b4, const T* b5, const T* b6, T* r) const {
-    const T* const b[] = {b0, b1, b2, b3, b4, b5, b6};
-    return Residual(b, r);
-  }
-
-  // AutoDiffCostFunction over the blocks (sizes...).
-  template <int... kSizes>
-  static ceres::CostFunction* Make(ClothResidual* f) {
-    return new ceres::AutoDiffCostFunction<ClothResidual, kChannels, kSizes...>(
-        f);
-  }
-
-  static ceres::CostFunction* Create(
-      std::shared_ptr<const Weave> weave, const TableRow& row,
-      Quantity quantity, std::shared_ptr<const RowSamples> samples) {
-    constexpr int P = ThreadParams::kSize, W = kWeaveSize;
-    const size_t n = weave->layout.threads.size();
-    const int layout = static_cast<int>(n) * 4 + (weave->weave_blocks ? 2 : 0) +
-                       (weave->fit_scale ? 1 : 0);
-    auto* f = new ClothResidual{std::move(weave),
-                                row.wi,
-                                row.wo,
-                                row.value,
-                                std::sqrt(row.weight) / row.sigma,
-                                quantity,
-                                std::move(samples)};
-    switch (layout) {  // threads * 4 + weave blocks * 2 + scale
-      case 4:
-        return Make<P>(f);
-      case 5:
-        return Make<P, 1>(f);
-      case 6:
-        return Make<P, W>(f);
-      case 7:
-        return Make<P, W, 1>(f);
-      case 8:
-        return Make<P, P>(f);
-      case 9:
-        return Make<P, P, 1>(f);
-      case 10:
-        return Make<P, W, P, W>(f);
-      case 11:
-        return Make<P, W, P, W, 1>(f);
-      case 12:
-        return Make<P, P, P>(f);
-      case 13:
-        return Make<P, P, P, 1>(f);
-      case 14:
-        return Make<P, W, P, W, P, W>(f);
-      default:
-        return Make<P, W, P, W, P, W, 1>(f);
-    }
+    return Value(ClothFromBlocks(*weave, blocks, true), row.wi, row.wo,
+                 table->quantity);
   }
 };
 
+// The fit-only entry of a thread: a factor on all of its tangent offsets,
+// keeping the weave's shape; bounded so that the largest offset stays
+// within [-90, 90] degrees.
+inline constexpr ParamInfo kOffsetScale = {
+    "offset_scale",
+    "unitless",
+    "factor on all of a thread's tangent offsets (the weave's shape kept)",
+    {0.0, kInfinity},
+    0.0,
+    1.0,
+    false,
+    {1.0},
+    "clothfit",
+    1};
+
 std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
   std::vector<ParameterSpec> specs;
-  const char* const* names = ThreadParamNames();
-  const double lower[] = {1.01, 0.0, 0.2, 0.2, 0.0, 0.0, 0.0};
-  const double upper[] = {3.0, 1.0, 90.0, 90.0, 1e3, 1e3, 1e3};
   for (size_t j = 0; j < layout.threads.size(); ++j) {
-    const std::string prefix = "threads[" + std::to_string(j) + "].";
-    for (int i = 0; i < ThreadParams::kSize; ++i) {
-      // eta is fixed by default: the data rarely separate it from kd/albedo.
-      const bool free = i != 0;
-      // kd and the albedo are bounded by their physical range.
-      specs.push_back(
-          {prefix + names[i], lower[i], upper[i], free, i == 1 || i >= 4});
+    const std::string prefix = ClothThreadPrefix(j);
+    for (ParameterSpec& spec : ParameterSpecs(ThreadParams(), prefix)) {
+      specs.push_back(spec);
     }
+    // eta is fixed by default: the data rarely separate it from kd/albedo.
+    specs[specs.size() - kThreadFlatSize].free = false;
     double largest = 0.0;
     for (double o : layout.threads[j].offsets_deg) {
       largest = std::max(largest, std::abs(o));
     }
-    specs.push_back({prefix + "coverage", 0.0, 1.0, false, true});
-    specs.push_back({prefix + "offset_scale", 0.0,
-                     largest > 0.0 ? 90.0 / largest : 1.0, false});
+    specs.push_back(SpecOf(kClothCoverage, prefix + kClothCoverage.name));
+    specs.back().free = false;
+    ParameterSpec offsets = SpecOf(kOffsetScale, prefix + kOffsetScale.name);
+    offsets.upper = largest > 0.0 ? kClothOffsets.fit_hi / largest : 1.0;
+    offsets.free = false;
+    specs.push_back(offsets);
   }
-  specs.push_back({"scale", 1e-6, 1e6, false});
+  specs.push_back(SpecOf(kFitScale, kFitScale.name));
+  specs.back().free = false;
   return specs;
 }
 
@@ -254,9 +167,9 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
 std::vector<double> ToVector(const ClothParams& c) {
   std::vector<double> x;
   for (const ClothThread& th : c.threads) {
-    double p[ThreadParams::kSize];
+    double p[kThreadFlatSize];
     ToArray(th.params, p);
-    x.insert(x.end(), p, p + ThreadParams::kSize);
+    x.insert(x.end(), p, p + kThreadFlatSize);
     x.push_back(th.coverage);
     x.push_back(1.0);  // offset_scale relative to the layout
   }
@@ -269,30 +182,14 @@ ClothParams FromVector(const ClothParams& layout, const std::vector<double>& x,
   ClothParams c = layout;
   for (size_t j = 0; j < c.threads.size(); ++j) {
     const double* t = x.data() + j * kPerThread;
-    c.threads[j].params = ThreadParamsFromArray(t);
+    FromArray(t, &c.threads[j].params);
     if (shared_albedo) {
       c.threads[j].params.albedo = glm::dvec3(x[4], x[5], x[6]);
     }
-    c.threads[j].coverage = t[ThreadParams::kSize];
-    for (double& o : c.threads[j].offsets_deg) o *= t[ThreadParams::kSize + 1];
+    c.threads[j].coverage = t[kThreadFlatSize];
+    for (double& o : c.threads[j].offsets_deg) o *= t[kThreadFlatSize + 1];
   }
   return c;
-}
-
-// Values of the model over the table, per row and channel.
-using Values = std::vector<glm::dvec3>;
-
-Values Predict(const MeasurementTable& table, const ClothParams& c,
-               const std::vector<std::shared_ptr<const RowSamples>>& samples) {
-  Values out(table.rows.size());
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const TableRow& row = table.rows[i];
-    out[i] = samples[i] ? FromCosineWeighted(
-                              ClothRhoFromSamples(c, *samples[i], row.wi.z),
-                              row.wi.z, table.quantity)
-                        : ClothValue(c, row.wi, row.wo, table.quantity);
-  }
-  return out;
 }
 
 }  // namespace
@@ -324,7 +221,7 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
     for (double o : layout.threads[j].offsets_deg) {
       theirs = std::max(theirs, std::abs(o));
     }
-    x[j * kPerThread + ThreadParams::kSize + 1] =
+    x[j * kPerThread + kThreadFlatSize + 1] =
         theirs > 0.0 ? mine / theirs : 1.0;
   }
   return x;
@@ -346,14 +243,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   // The cloth model is reflection only (SPEC §3.2): a row with the light or
   // the view below the surface tells nothing about it. Such rows are left
   // out and counted, not fitted as zeros.
-  const size_t not_reflection = static_cast<size_t>(
-      std::count_if(table.rows.begin(), table.rows.end(),
-                    [](const TableRow& row) { return !IsReflectionRow(row); }));
-  if (not_reflection == table.rows.size()) {
-    throw InputError(
-        "cloth fit: no row has both the light and the view above the "
-        "surface (the cloth model is reflection only)");
-  }
+  const int not_reflection = CountNotReflection(table, "cloth");
   if (not_reflection > 0) {
     MeasurementTable reflection = table;
     reflection.rows.erase(
@@ -362,7 +252,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
             [](const TableRow& row) { return !IsReflectionRow(row); }),
         reflection.rows.end());
     ClothFitResult result = FitCloth(reflection, init, options);
-    result.report.rows_not_used = static_cast<int>(not_reflection);
+    result.report.rows_not_used = not_reflection;
     return result;
   }
   const size_t n = init.threads.size();
@@ -402,54 +292,38 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   // Ceres blocks: [thread j params] (+ [weave j]) in vector order; the
   // weave entries that Ceres does not see stay at their initial values.
   for (size_t j = 0; j < n; ++j) {
-    lsq.block_sizes.push_back(ThreadParams::kSize);
+    lsq.block_sizes.push_back(kThreadFlatSize);
     lsq.block_sizes.push_back(kWeaveSize);
   }
   lsq.block_sizes.push_back(1);
   lsq.specs.back().free = options.fit_scale;
-  weave->fit_scale = options.fit_scale;
   lsq.sigma_known = table.has_sigma;
 
   // With every offset_scale fixed the tangent samples never change: compute
   // them once for all starts and solves.
-  std::vector<std::shared_ptr<const RowSamples>> row_samples(table.rows.size());
+  auto evaluator = std::make_shared<ClothEvaluator>();
+  evaluator->table = &table;
+  evaluator->weave = weave;
+  evaluator->samples.resize(table.rows.size());
   if (offsets_fixed) {
     for (size_t i = 0; i < table.rows.size(); ++i) {
-      row_samples[i] = std::make_shared<const RowSamples>(
+      evaluator->samples[i] = std::make_shared<const RowSamples>(
           ComputeRowSamples(init, eta_fixed, table.rows[i]));
     }
   }
-  lsq.add_residuals = [&](const std::vector<double*>& blocks,
-                          ceres::LossFunction* loss, ceres::Problem* problem) {
-    std::vector<double*> used;
-    for (size_t j = 0; j < n; ++j) {
-      used.push_back(blocks[2 * j]);
-      if (weave->weave_blocks) used.push_back(blocks[2 * j + 1]);
-    }
-    if (weave->fit_scale) used.push_back(blocks.back());
-    for (size_t i = 0; i < table.rows.size(); ++i) {
-      const TableRow& row = table.rows[i];
-      ceres::CostFunction* cost =
-          table.channels == 1 ? ClothResidual<1>::Create(
-                                    weave, row, table.quantity, row_samples[i])
-                              : ClothResidual<3>::Create(
-                                    weave, row, table.quantity, row_samples[i]);
-      problem->AddResidualBlock(cost, loss, used);
-    }
-  };
-  lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured,
-                    std::vector<const TableRow*>* rows) {
-    const Values v =
-        Predict(table, FromVector(init, x, weave->shared_albedo), row_samples);
-    for (size_t i = 0; i < table.rows.size(); ++i) {
-      for (int ch = 0; ch < table.channels; ++ch) {
-        model->push_back(x.back() * v[i][ch]);
-        measured->push_back(table.rows[i].value[ch]);
-        if (rows) rows->push_back(&table.rows[i]);
-      }
-    }
-  };
+  ResidualBlocks blocks;
+  for (size_t j = 0; j < n; ++j) {
+    blocks.used.push_back(static_cast<int>(2 * j));
+    if (weave->weave_blocks) blocks.used.push_back(static_cast<int>(2 * j + 1));
+  }
+  if (options.fit_scale) {
+    blocks.scale = static_cast<int>(blocks.used.size());
+    blocks.used.push_back(static_cast<int>(2 * n));
+  }
+  const std::vector<std::shared_ptr<const RowSamples>>& row_samples =
+      evaluator->samples;
+  SetModelResiduals(std::shared_ptr<const ClothEvaluator>(evaluator),
+                    TableFitRows(table), blocks, &lsq);
 
   // Starts: a grid search over each thread's widths (and eta) with the
   // linear parameters (albedo, kd, scale) solved in closed form, by
@@ -485,8 +359,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       Vec3<double> s_j;
       double w_j;
       ThreadSums(p, *search_samples[i], j, &s_j, &w_j);
-      v[i] = FromCosineWeighted(s_j * (coverage * inv_q[i]), table.rows[i].wi.z,
-                                table.quantity);
+      v[i] = ConvertQuantity(s_j * (coverage * inv_q[i]),
+                             Quantity::kCosineWeighted, table.quantity,
+                             table.rows[i].wi.z);
     }
     return v;
   };
@@ -522,6 +397,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
   result.params = FromVector(init, x, weave->shared_albedo);
+  result.report.rows = static_cast<int>(table.rows.size());
   if (weave->shared_albedo) {  // report the tied albedos at their value
     for (ParameterReport& p : result.report.parameters) {
       for (const char* channel : {"albedo_r", "albedo_g", "albedo_b"}) {

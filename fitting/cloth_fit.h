@@ -16,9 +16,9 @@ namespace clothfit {
 
 struct ClothFitOptions {
   SolverOptions solver;
-  // Names as in the report: "threads[J].NAME" with NAME one of
-  // ThreadParamNames(), "albedo", "coverage", "offset_scale"; a bare NAME
-  // applies to every thread.
+  // Names as in the report: "threads[J].NAME" with NAME a flat name of the
+  // thread's table ("kd", "albedo_r"), "albedo", "coverage" or
+  // "offset_scale"; a bare NAME applies to every thread.
   std::vector<std::string> fix;
   std::vector<std::string> free_only;
   // Multi-start around the initial parameters: each thread's two widths
@@ -34,10 +34,7 @@ struct ClothFitOptions {
   bool fit_scale = false;
 };
 
-struct ClothFitResult {
-  ClothParams params;
-  FitReport report;
-};
+using ClothFitResult = FitResult<ClothParams>;
 
 // The default start for a weave whose threads are unknown: the weave's
 // directions, coverages, tangent offsets and eta, with every thread at

@@ -1,13 +1,30 @@
 #include "fitting/fit_result.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "io/input_error.h"
 #include "io/text_util.h"
 
 namespace clothfit {
+
+int CountNotReflection(const MeasurementTable& table,
+                       const std::string& model) {
+  const size_t count = static_cast<size_t>(
+      std::count_if(table.rows.begin(), table.rows.end(),
+                    [](const TableRow& row) { return !IsReflectionRow(row); }));
+  if (count > 0 && count == table.rows.size()) {
+    throw InputError(
+        (table.source.empty() ? std::string("table") : table.source) +
+        ": no row has both the light and the view above the surface (wi.z "
+        "and wo.z > 0); the " +
+        model + " model is reflection only");
+  }
+  return static_cast<int>(count);
+}
 
 void ReportChannelsFollowRed(const std::string& name, FitReport* report) {
   // Parameter name without its last two characters ("_r") -> red value.
@@ -43,8 +60,14 @@ std::string FitReportJson(const FitReport& r) {
   j["relative_rms"] = r.relative_rms;
   j["iterations"] = r.iterations;
   j["residuals"] = r.residuals;
+  j["rows"] = r.rows;
   if (r.rows_not_used > 0) j["rows_not_used"] = r.rows_not_used;
   j["starts"] = r.starts;
+  if (r.alternations > 0) {
+    j["alternations"] = r.alternations;
+    j["lut_change"] = r.lut_change;
+    j["view_relative_rms"] = r.view_relative_rms;
+  }
   nlohmann::ordered_json values = nlohmann::ordered_json::object();
   for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
   j["values"] = values;
@@ -80,6 +103,13 @@ std::string FitReportText(const FitReport& r,
                 "cost %.6g, rms %.4g, relative rms %.4g over %d residuals\n",
                 r.final_cost, r.rms, r.relative_rms, r.residuals);
   out << line;
+  if (r.alternations > 0) {
+    std::snprintf(line, sizeof(line),
+                  "%d alternation(s); last mean relative change of the lookup "
+                  "table %.3g\n",
+                  r.alternations, r.lut_change);
+    out << line;
+  }
   if (r.rows_not_used > 0) {
     std::snprintf(line, sizeof(line),
                   "%d table row(s) not used (the model cannot explain them)\n",

@@ -1,6 +1,7 @@
-// What every fit reports (SPEC §4 "fit" object, issue 3): cost, errors,
-// iterations, time, termination, and per-parameter standard deviations, or
-// an honest statement of which parameters the data cannot determine.
+// What every fit reports, for every model (SPEC §4 "fit" object): cost,
+// errors, iterations, time, termination, and per-parameter standard
+// deviations, or an honest statement of which parameters the data cannot
+// determine. One type, one JSON layout (FitReportJson).
 #pragma once
 
 #include <functional>
@@ -14,10 +15,16 @@ namespace clothfit {
 
 enum class Loss { kNone, kHuber, kCauchy };
 
+// The limits of the solver options, the same for every fit.
+inline constexpr int kMaxSolverIterations = 100000;
+inline constexpr int kMaxSolverThreads = 256;
+
 struct SolverOptions {
-  int max_iterations = 200;
+  int max_iterations = 200;  // [1, kMaxSolverIterations] (per solve)
   Loss loss = Loss::kNone;
-  double loss_scale = 1.0;  // in units of sigma (residuals are normalised)
+  double loss_scale = 1.0;  // > 0, in units of sigma (normalised residuals)
+  // [0, kMaxSolverThreads]; 0: every core. The least-squares fits evaluate
+  // residuals on them, a texel map fits texels on them.
   int num_threads = 1;
   // Of the Levenberg-Marquardt steps (fitting/linear_solver.h).
   LinearSolver linear_solver = LinearSolver::kDenseQr;
@@ -45,10 +52,20 @@ struct FitReport {
   double rms = 0.0;           // RMS of (model - measured), data units
   double relative_rms = 0.0;  // RMS(model - measured) / RMS(measured)
   int iterations = 0;
+  // Alternating fits (Lafortune: lobes, then the lookup table in closed
+  // form): the passes, and the last mean relative change of the table; 0
+  // for the others.
+  int alternations = 0;
+  double lut_change = 0.0;
+  // The relative RMS error of each view's colour (Lafortune: the mean over
+  // a view's rows of model and data, over the views; the view-dependent
+  // colour of Daubert et al. 2001, Fig. 5); 0 where not computed.
+  double view_relative_rms = 0.0;
   // Wall time of the whole fit: printed in the summary, never written to
   // the parameter file (same inputs give bit-identical files, issue 8).
   double seconds = 0.0;
   int residuals = 0;
+  int rows = 0;  // table rows fitted
   // Table rows the model cannot explain, left out of the fit (a
   // reflection-only model's transmission rows); 0 for most fits.
   int rows_not_used = 0;
@@ -58,6 +75,20 @@ struct FitReport {
   // data cannot determine, e.g. "not identifiable: eta, kd".
   std::string identifiability;
 };
+
+// A fit's parameters and its report (ThreadFitResult = FitResult<ThreadParams>,
+// ...).
+template <typename P>
+struct FitResult {
+  P params;
+  FitReport report;
+};
+
+// For a reflection-only model (`model`: "cloth", "lafortune"): the number
+// of rows of `table` with the light or the view below the surface, which
+// its fit leaves out and counts in FitReport::rows_not_used. Throws
+// InputError naming the table's source when no row is left.
+int CountNotReflection(const MeasurementTable& table, const std::string& model);
 
 // One-channel tables fit one value of an rgb parameter: every reported
 // parameter named PREFIX`name`_g or PREFIX`name`_b takes the value of

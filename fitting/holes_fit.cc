@@ -1,57 +1,32 @@
 #include "fitting/holes_fit.h"
 
-#include <ceres/ceres.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "fitting/least_squares.h"
+#include "fitting/model_residual_internal.h"
 #include "io/input_error.h"
 
 namespace clothfit {
 namespace {
 
-// residual_c = (model_c - measured_c) sqrt(weight) / sigma_c, c < kChannels,
-// with the model of the whole tile at the row's view direction.
-template <int kChannels>
-struct HolesResidual {
-  glm::dvec3 wo, value, scale;
-  const LevelTexels* texels;  // shared, read only
-  HoleMethod method;
+// The tile's transmittance at row i's view.
+struct HolesEvaluator {
+  const MeasurementTable* table;
+  const HolesTile* tile;  // shared, read only
 
   template <typename T>
-  bool operator()(const T* x, T* residual) const {
-    const HolesParamsT<T> p = HolesParamsFromArray(x);
-    const Vec3<T> model = HolesTransmittance(
-        p, TileRatios(*texels, method, ViewOffset(p.thickness_texels, wo)));
-    for (int c = 0; c < kChannels; ++c) {
-      residual[c] = (model[c] - T(value[c])) * T(scale[c]);
-    }
-    return true;
-  }
-
-  static ceres::CostFunction* Create(const TableRow& row,
-                                     const LevelTexels* texels,
-                                     HoleMethod method) {
-    return new ceres::AutoDiffCostFunction<HolesResidual, kChannels,
-                                           HolesParams::kSize>(
-        new HolesResidual{row.wo, row.value, std::sqrt(row.weight) / row.sigma,
-                          texels, method});
+  Vec3<T> operator()(const T* const* blocks, size_t i) const {
+    HolesParamsT<T> p;
+    FromArray(blocks[0], &p);
+    return HolesTransmittance(p, *tile, table->rows[i].wo);
   }
 };
 
-// thickness_texels: bounds that only limit the search (a fit that ends on
-// one did not find h); the wall colour: its physical range.
-constexpr double kMinThickness = 1e-3, kMaxThickness = 1e3;
-
 std::vector<ParameterSpec> HolesSpecs(bool fit_wall_color) {
-  const char* const* names = HolesParamNames();
-  std::vector<ParameterSpec> specs;
-  specs.push_back({names[0], kMinThickness, kMaxThickness, true, false});
-  for (int c = 1; c < HolesParams::kSize; ++c) {
-    specs.push_back({names[c], 0.0, 1.0, fit_wall_color, true});
-  }
+  std::vector<ParameterSpec> specs = ParameterSpecs(HolesParams());
+  for (size_t c = 1; c < specs.size(); ++c) specs[c].free = fit_wall_color;
   return specs;
 }
 
@@ -62,15 +37,15 @@ struct GridPoint {
   HolesParams params;
 };
 
-GridPoint EvaluateStart(const MeasurementTable& table,
-                        const LevelTexels& texels, HoleMethod method,
+GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
                         const std::vector<ParameterSpec>& specs,
                         HolesParams params) {
   const size_t n = table.rows.size();
   std::vector<HoleRatios> ratios(n);
   for (size_t i = 0; i < n; ++i) {
-    ratios[i] = TileRatios(
-        texels, method, ViewOffset(params.thickness_texels, table.rows[i].wo));
+    ratios[i] =
+        TileRatios(tile.texels, tile.method,
+                   ViewOffset(params.thickness_texels, table.rows[i].wo));
   }
   GridPoint point;
   point.cost = 0.0;
@@ -100,18 +75,18 @@ GridPoint EvaluateStart(const MeasurementTable& table,
 // The best point of a log grid over h (plus the init), and the best one at
 // least a factor 2 away from it (another basin), as starts.
 std::vector<std::vector<double>> SearchStarts(
-    const MeasurementTable& table, const LevelTexels& texels, HoleMethod method,
+    const MeasurementTable& table, const HolesTile& tile,
     const std::vector<ParameterSpec>& specs, const HolesParams& init) {
   std::vector<GridPoint> points;
   if (specs[0].free) {
-    for (double h = kMinThickness * 1.5; h < kMaxThickness;
+    for (double h = specs[0].lower * 1.5; h < specs[0].upper;
          h *= std::pow(2.0, 0.25)) {
       HolesParams p = init;
       p.thickness_texels = h;
-      points.push_back(EvaluateStart(table, texels, method, specs, p));
+      points.push_back(EvaluateStart(table, tile, specs, p));
     }
   }
-  points.push_back(EvaluateStart(table, texels, method, specs, init));
+  points.push_back(EvaluateStart(table, tile, specs, init));
   std::sort(
       points.begin(), points.end(),
       [](const GridPoint& a, const GridPoint& b) { return a.cost < b.cost; });
@@ -123,7 +98,7 @@ std::vector<std::vector<double>> SearchStarts(
                       std::log(2.0)) {
       continue;
     }
-    std::vector<double> x(HolesParams::kSize);
+    std::vector<double> x(FlatSize(p.params));
     ToArray(p.params, x.data());
     starts.push_back(x);
     if (starts.size() == 2) break;
@@ -133,8 +108,7 @@ std::vector<std::vector<double>> SearchStarts(
 
 }  // namespace
 
-HolesFitResult FitHoles(const MeasurementTable& table,
-                        const HoleTexture& texture,
+HolesFitResult FitHoles(const MeasurementTable& table, const HolesTile& tile,
                         const HolesFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   if (table.quantity != Quantity::kTransmittance) {
@@ -142,20 +116,9 @@ HolesFitResult FitHoles(const MeasurementTable& table,
                                  "table holds ") +
                      QuantityName(table.quantity));
   }
-  const int top = texture.counts.levels() - 1;
-  const int level = options.level < 0 ? top : options.level;
-  if (level > top) {
-    throw InputError("level " + std::to_string(level) +
-                     " is out of range: the mask's pyramid has levels 0.." +
-                     std::to_string(top));
-  }
-  if (options.method == HoleMethod::kExtension && texture.distances.empty()) {
-    throw InputError("the extension needs the mask's run counts");
-  }
   const HolesParams init = options.init ? *options.init : HolesParams();
-  const std::string invalid = ValidateHolesParams(init);
+  const std::string invalid = ValidateParams(init);
   if (!invalid.empty()) throw InputError("initial parameters: " + invalid);
-  const LevelTexels texels = GatherLevel(texture, level);
 
   LeastSquaresProblem lsq;
   lsq.specs = HolesSpecs(options.fit_wall_color);
@@ -163,40 +126,21 @@ HolesFitResult FitHoles(const MeasurementTable& table,
   if (table.channels == 1) {  // one channel: wall_color_g, _b follow r
     lsq.specs[2].free = lsq.specs[3].free = false;
   }
-  lsq.block_sizes = {HolesParams::kSize};
+  lsq.block_sizes = {FlatSize(init)};
   lsq.sigma_known = table.has_sigma;
-  lsq.add_residuals = [&](const std::vector<double*>& blocks,
-                          ceres::LossFunction* loss, ceres::Problem* problem) {
-    for (const TableRow& row : table.rows) {
-      problem->AddResidualBlock(
-          table.channels == 1
-              ? HolesResidual<1>::Create(row, &texels, options.method)
-              : HolesResidual<3>::Create(row, &texels, options.method),
-          loss, blocks[0]);
-    }
-  };
-  lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured,
-                    std::vector<const TableRow*>* rows) {
-    const HolesParams p = HolesParamsFromArray(x.data());
-    for (const TableRow& row : table.rows) {
-      const glm::dvec3 m = HolesTransmittance(
-          p, TileRatios(texels, options.method,
-                        ViewOffset(p.thickness_texels, row.wo)));
-      for (int c = 0; c < table.channels; ++c) {
-        model->push_back(m[c]);
-        measured->push_back(row.value[c]);
-        if (rows) rows->push_back(&row);
-      }
-    }
-  };
+  ResidualBlocks blocks;
+  blocks.used = {0};
+  SetModelResiduals(
+      std::make_shared<const HolesEvaluator>(HolesEvaluator{&table, &tile}),
+      TableFitRows(table), blocks, &lsq);
 
   const std::vector<std::vector<double>> starts =
-      SearchStarts(table, texels, options.method, lsq.specs, init);
+      SearchStarts(table, tile, lsq.specs, init);
   HolesFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
-  result.params = HolesParamsFromArray(x.data());
+  FromArray(x.data(), &result.params);
+  result.report.rows = static_cast<int>(table.rows.size());
   if (table.channels == 1) {  // one channel: one wall colour
     result.params.wall_color =
         OneChannelRgb("wall_color", result.params.wall_color, &result.report);

@@ -12,29 +12,21 @@
 #include <unordered_map>
 
 #include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/residual_weight.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
 namespace {
 
-long long Round(double x) { return std::llround(x * 1e9); }
-
-struct KeyHash {
-  size_t operator()(const std::array<long long, 6>& k) const {
-    size_t h = 1469598103934665603ULL;
-    for (long long v : k) h = (h ^ static_cast<size_t>(v)) * 1099511628211ULL;
-    return h;
-  }
-};
-
-// All residuals of one channel of one texel: (T(v_i) f1(l_i, v_i) - y_i)
-// sqrt(w_i), with T fixed (eq. 3 with the lookup table of the last pass).
-// Per sample the fixed terms are precomputed: the products l_x v_x,
-// l_y v_y, l_z v_z, the foreshortening max(l_z, 0), T sqrt(w) and
-// y sqrt(w), so that the solver's many evaluations do only the lobes.
+// All residuals of one channel of one texel, T(v_i) f1(l_i, v_i) - y_i
+// weighted (fitting/residual_weight.h), with T fixed (eq. 3 with the
+// lookup table of the last pass). Per sample the fixed terms are
+// precomputed - the products l_x v_x, l_y v_y, l_z v_z and the factor
+// T(v) max(l_z, 0) - so that the solver's many evaluations do only the
+// lobes (LobeSum, models/lafortune.h).
 struct ChannelTerms {
-  double xx, yy, zz, lz, scale, target;
+  double xx, yy, zz, factor, measured, scale;
 };
 
 template <int kLobes>
@@ -45,13 +37,8 @@ struct ChannelResidual {
   bool operator()(const T* x, T* residual) const {
     for (size_t i = 0; i < terms.size(); ++i) {
       const ChannelTerms& s = terms[i];
-      T sum = x[0];
-      for (int k = 0; k < kLobes; ++k) {
-        const T* lobe = x + 1 + 4 * k;
-        sum += LobePower(lobe[0] * s.xx + lobe[1] * s.yy + lobe[2] * s.zz,
-                         lobe[3]);
-      }
-      residual[i] = sum * (s.lz * s.scale) - s.target;
+      residual[i] = WeightedResidual(
+          LobeSum(x, kLobes, s.xx, s.yy, s.zz) * s.factor, s.measured, s.scale);
     }
     return true;
   }
@@ -71,17 +58,14 @@ std::vector<ChannelTerms> MakeChannelTerms(const TexelSamples& s,
   for (size_t i = 0; i < s.size(); ++i) {
     const glm::dvec3& l = s.l[i];
     const glm::dvec3& v = s.v[i];
-    const double root_w = std::sqrt(s.weight[i][channel]);
-    terms[i] = {l.x * v.x,
-                l.y * v.y,
-                l.z * v.z,
-                std::max(l.z, 0.0),
-                lut[s.view[i]] * root_w,
-                s.value[i][channel] * root_w};
+    terms[i] = {l.x * v.x,           l.y * v.y,
+                l.z * v.z,           lut[s.view[i]] * Foreshortening(l),
+                s.value[i][channel], std::sqrt(s.weight[i][channel])};
   }
   return terms;
 }
 
+// The lobe count is a template argument: the solver's inner loop unrolls.
 ceres::CostFunction* MakeChannelCost(int lobes,
                                      std::vector<ChannelTerms> terms) {
   switch (lobes) {
@@ -96,12 +80,9 @@ ceres::CostFunction* MakeChannelCost(int lobes,
   }
 }
 
-// Bounds keep every lobe value finite: the lobe base a = C . (l * v) is at
-// most |Cx| + |Cy| + |Cz| <= 9 for |C| <= 3, and 9^200 ~ 1e191, so a
-// trial step of the solver never overflows (Ceres rejects and logs
-// non-finite residuals). rho_d in [0, 1e3]; N in [0.5, 200] (positive; N
-// below 0.5 makes a lobe a near-constant); T in [0, 1e3].
-constexpr double kMinN = 0.5, kMaxN = 200.0, kMaxC = 3.0, kMaxT = 1e3;
+// The fits' bounds on C (kLafortuneCx, models/lafortune.h), and on T: a
+// non-negative factor, at most 1e3.
+constexpr double kMaxC = kLafortuneCx.fit_hi, kMaxT = 1e3;
 
 // Iteration cap of the lobe fits after the first pass (warm starts).
 constexpr int kLaterPassIterations = 8;
@@ -124,15 +105,16 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   problem.AddResidualBlock(
       MakeChannelCost(lobes, MakeChannelTerms(samples, lut, channel)), nullptr,
       x);
-  problem.SetParameterLowerBound(x, 0, 0.0);
-  problem.SetParameterUpperBound(x, 0, 1e3);
+  // The channel layout's entries: rho_d, then each lobe's Cx, Cy, Cz, N.
+  const ParamInfo* const lobe_entries[] = {&kLafortuneCx, &kLafortuneCy,
+                                           &kLafortuneCz, &kLafortuneN};
+  problem.SetParameterLowerBound(x, 0, kLafortuneDiffuse.fit_lo);
+  problem.SetParameterUpperBound(x, 0, kLafortuneDiffuse.fit_hi);
   for (int k = 0; k < lobes; ++k) {
-    for (int i = 0; i < 3; ++i) {
-      problem.SetParameterLowerBound(x, 1 + 4 * k + i, -kMaxC);
-      problem.SetParameterUpperBound(x, 1 + 4 * k + i, kMaxC);
+    for (int i = 0; i < 4; ++i) {
+      problem.SetParameterLowerBound(x, 1 + 4 * k + i, lobe_entries[i]->fit_lo);
+      problem.SetParameterUpperBound(x, 1 + 4 * k + i, lobe_entries[i]->fit_hi);
     }
-    problem.SetParameterLowerBound(x, 4 + 4 * k, kMinN);
-    problem.SetParameterUpperBound(x, 4 + 4 * k, kMaxN);
   }
   ceres::Solver::Options options;
   SetCeresLinearSolver(fit.linear_solver, &options);
@@ -163,31 +145,25 @@ LafortuneParams PaperStart(int lobes, double diffuse, double c) {
   return p;
 }
 
-// Weighted sums of the model against the data: cost, and the T update.
-struct PassResult {
-  double cost = 0.0;
-  int iterations = 0;
-};
-
 // Fits all three channels' lobes with the given lookup table.
 // With warm_channels, channels 1 and 2 start from channel 0's solution
 // scaled to their data (diffuse by the ratio s of the channel sums, each
 // lobe's C by s^(1/N), so its value scales by s): the channels of a texel
 // share their shape, and a start next to the solution saves iterations.
-PassResult FitLobes(const TexelSamples& samples,
-                    const std::vector<glm::dvec3>& t,
-                    const LafortuneFitOptions& options, bool warm_channels,
-                    LafortuneParams* p) {
-  PassResult out;
+// Returns the solver's iterations.
+int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
+             const LafortuneFitOptions& options, bool warm_channels,
+             LafortuneParams* p) {
+  int iterations = 0;
   const int lobes = static_cast<int>(p->lobes.size());
   std::vector<double> x(LafortuneChannelSize(lobes));
   glm::dvec3 sum(0.0);
   for (const glm::dvec3& y : samples.value) sum += y;
   for (int c = 0; c < 3; ++c) {
-    ToArray(*p, c, x.data());
+    LafortuneChannelToArray(*p, c, x.data());
     if (warm_channels && c > 0 && sum[0] > 0.0 && sum[c] > 0.0) {
       const double scale = sum[c] / sum[0];
-      ToArray(*p, 0, x.data());
+      LafortuneChannelToArray(*p, 0, x.data());
       x[0] *= scale;
       for (int k = 0; k < lobes; ++k) {
         for (int i = 1; i <= 3; ++i) {
@@ -199,10 +175,10 @@ PassResult FitLobes(const TexelSamples& samples,
     }
     std::vector<double> lut(t.size());
     for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
-    out.iterations += SolveChannel(samples, lut, c, lobes, options, x.data());
+    iterations += SolveChannel(samples, lut, c, lobes, options, x.data());
     LafortuneChannelFromArray(x.data(), c, p);
   }
-  return out;
+  return iterations;
 }
 
 double Cost(const TexelSamples& s, const std::vector<glm::dvec3>& t,
@@ -216,32 +192,8 @@ double Cost(const TexelSamples& s, const std::vector<glm::dvec3>& t,
   return std::isfinite(cost) ? cost : HUGE_VAL;
 }
 
-// Every stride-th sample of a scrambled order (Knuth's multiplicative hash
-// of the index), so that the subset spreads over all views and lights;
-// empty when stride <= 1 or the texel has at most kMinSubsampled samples.
-constexpr size_t kMinSubsampled = 1024;
-TexelSamples Subsample(const TexelSamples& samples, int stride) {
-  TexelSamples sub;
-  if (stride <= 1 || samples.size() <= kMinSubsampled) return sub;
-  sub.normal = samples.normal;
-  sub.views = samples.views;
-  sub.view_alpha = samples.view_alpha;
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const uint64_t hash = (static_cast<uint64_t>(i) * 2654435761u) >> 7;
-    if (hash % static_cast<uint64_t>(stride) != 0) continue;
-    sub.l.push_back(samples.l[i]);
-    sub.v.push_back(samples.v[i]);
-    sub.value.push_back(samples.value[i]);
-    sub.weight.push_back(samples.weight[i]);
-    sub.view.push_back(samples.view[i]);
-    sub.count_rows.push_back(samples.count_rows[i]);
-    sub.source_line.push_back(samples.source_line[i]);
-  }
-  return sub;
-}
-
-// Names the first sample whose model value is not finite (issue 8): the
-// table line of its first row and its directions in the texel's frame.
+// Names the first sample whose model value is not finite: the table line of its
+// first row and its directions in the texel's frame.
 std::string NonFiniteSample(const TexelSamples& s,
                             const std::vector<glm::dvec3>& t,
                             const LafortuneParams& p) {
@@ -270,155 +222,21 @@ bool Finite(const LafortuneParams& p) {
 
 }  // namespace
 
-ViewIndex::ViewIndex(const MeasurementTable& table) {
-  std::unordered_map<std::array<long long, 6>, int, KeyHash> views, pairs;
-  row_view_.resize(table.rows.size());
-  row_pair_.resize(table.rows.size());
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const TableRow& row = table.rows[i];
-    const std::array<long long, 6> view = {
-        Round(row.wo.x), Round(row.wo.y), Round(row.wo.z), 0, 0, 0};
-    std::array<long long, 6> pair = view;
-    pair[3] = Round(row.wi.x);
-    pair[4] = Round(row.wi.y);
-    pair[5] = Round(row.wi.z);
-    auto v = views.emplace(view, static_cast<int>(views_.size()));
-    if (v.second) views_.push_back(row.wo);
-    row_view_[i] = v.first->second;
-    row_pair_[i] = pairs.emplace(pair, pairs_).first->second;
-    if (row_pair_[i] == pairs_) ++pairs_;
-  }
-}
-
-TexelSamples CollectSamples(const MeasurementTable& table,
-                            const ViewIndex& views,
-                            const std::vector<size_t>& rows, int* skipped) {
-  if (table.quantity == Quantity::kTransmittance) {
-    throw InputError(
-        "a Lafortune model predicts reflection (brdf or "
-        "cosine_weighted), not transmittance");
-  }
-  TexelSamples s;
-  s.views = views.views();
-  std::vector<double> alpha_sum(s.views.size(), 0.0);
-  std::vector<int> alpha_count(s.views.size(), 0);
-  std::vector<int> slot(views.pairs(), -1);  // pair -> sample
-  std::vector<glm::dvec3> sum_wy;            // per sample: sum w y
-  int dropped = 0;
-  for (size_t index : rows) {
-    const TableRow& row = table.rows[index];
-    if (!IsReflectionRow(row)) {
-      ++dropped;
-      continue;
-    }
-    // Values as rho; sigma likewise (rho = f wi.z).
-    const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
-    const glm::dvec3 sigma = row.sigma * to_rho;
-    const glm::dvec3 w = row.weight / (sigma * sigma);
-    const int view = views.RowView(index);
-    int& k = slot[views.RowPair(index)];
-    if (k < 0) {
-      k = static_cast<int>(s.l.size());
-      s.l.push_back(row.wi);
-      s.v.push_back(row.wo);
-      s.view.push_back(view);
-      s.weight.push_back(glm::dvec3(0.0));
-      s.value.push_back(glm::dvec3(0.0));
-      s.source_line.push_back(row.source_line);
-      sum_wy.push_back(glm::dvec3(0.0));
-    }
-    s.weight[k] += w;
-    sum_wy[k] += w * row.value * to_rho;
-    s.value[k] += row.value * to_rho;  // plain sum, for zero weights
-    s.count_rows.resize(s.l.size(), 0);
-    ++s.count_rows[k];
-    alpha_sum[view] += row.alpha;
-    ++alpha_count[view];
-  }
-  for (size_t k = 0; k < s.l.size(); ++k) {
-    for (int c = 0; c < 3; ++c) {
-      s.value[k][c] = s.weight[k][c] > 0.0 ? sum_wy[k][c] / s.weight[k][c]
-                                           : s.value[k][c] / s.count_rows[k];
-    }
-  }
-  if (table.has_normal) {
-    glm::dvec3 normal_sum(0.0);
-    for (size_t index : rows) normal_sum += table.rows[index].normal;
-    if (glm::length(normal_sum) > 0.0) s.normal = glm::normalize(normal_sum);
-    const TexelFrame frame = MakeTexelFrame(s.normal);
-    for (size_t k = 0; k < s.l.size(); ++k) {
-      s.l[k] = ToTexelFrame(frame, s.l[k]);
-      s.v[k] = ToTexelFrame(frame, s.v[k]);
-    }
-  }
-  s.view_alpha.resize(s.views.size());
-  for (size_t k = 0; k < s.views.size(); ++k) {
-    s.view_alpha[k] = alpha_count[k] ? alpha_sum[k] / alpha_count[k] : 1.0;
-  }
-  if (skipped) *skipped = dropped;
-  return s;
-}
-
-void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
-                     const ViewIndex& views, const std::vector<size_t>& rows,
-                     double* rms, double* relative_rms,
-                     double* view_relative_rms) {
-  const bool same_views = model.lut.views.size() == views.views().size();
-  const TexelFrame frame = MakeTexelFrame(model.normal);
-  double se = 0.0, ss = 0.0;
-  size_t n = 0;
-  // Per view: sums of model - data and of data, and the row count.
-  const size_t n_views = views.views().size();
-  std::vector<glm::dvec3> view_d(n_views, glm::dvec3(0.0)),
-      view_y(n_views, glm::dvec3(0.0));
-  std::vector<int> view_n(n_views, 0);
-  for (size_t index : rows) {
-    const TableRow& row = table.rows[index];
-    if (!IsReflectionRow(row)) continue;
-    const double to_rho = table.quantity == Quantity::kBrdf ? row.wi.z : 1.0;
-    const glm::dvec3 y = row.value * to_rho;
-    const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]
-                                    : LookupView(model.lut, row.wo).color;
-    const glm::dvec3 d =
-        t * LafortuneF1(model.params, ToTexelFrame(frame, row.wi),
-                        ToTexelFrame(frame, row.wo)) -
-        y;
-    se += glm::dot(d, d);
-    ss += glm::dot(y, y);
-    ++n;
-    const int view = views.RowView(index);
-    view_d[view] += d;
-    view_y[view] += y;
-    ++view_n[view];
-  }
-  *rms = n ? std::sqrt(se / (3.0 * n)) : 0.0;
-  *relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
-  if (view_relative_rms) {
-    double vse = 0.0, vss = 0.0;
-    for (size_t k = 0; k < n_views; ++k) {
-      if (view_n[k] == 0) continue;
-      const glm::dvec3 d = view_d[k] / double(view_n[k]);
-      const glm::dvec3 y = view_y[k] / double(view_n[k]);
-      vse += glm::dot(d, d);
-      vss += glm::dot(y, y);
-    }
-    *view_relative_rms = vss > 0.0 ? std::sqrt(vse / vss) : 0.0;
-  }
-}
-
 LafortuneFitResult FitLafortune(const TexelSamples& samples,
                                 const LafortuneFitOptions& options) {
   LafortuneFitResult out;
+  out.report.residuals = static_cast<int>(3 * samples.size());
+  for (int rows : samples.count_rows) out.report.rows += rows;
   const int lobes = std::clamp(options.lobes, 0, 3);
   const size_t n_views = samples.views.size();
   std::vector<glm::dvec3> t(n_views, glm::dvec3(1.0));
-  out.model.lut.views = samples.views;
-  out.model.lut.alpha = samples.view_alpha;
-  out.model.normal = samples.normal;
+  out.params.lut.views = samples.views;
+  out.params.lut.alpha = samples.view_alpha;
+  out.params.normal = samples.normal;
   if (samples.size() == 0) {
-    out.model.params = PaperStart(lobes, 0.0, 1.0);
-    out.model.lut.color = t;
-    out.message = "no samples";
+    out.params.params = PaperStart(lobes, 0.0, 1.0);
+    out.params.lut.color = t;
+    out.report.message = "no samples";
     return out;
   }
   // Starts: the paper's, and one scaled to the data: rho_d from the
@@ -486,8 +304,8 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   const TexelSamples sub = Subsample(samples, options.first_pass_subsample);
   const TexelSamples& first = sub.size() > 0 ? sub : samples;
   for (LafortuneParams p : starts) {
-    out.iterations +=
-        FitLobes(first, t, options, options.warm_channels, &p).iterations;
+    out.report.iterations +=
+        FitLobes(first, t, options, options.warm_channels, &p);
     const double cost = Cost(samples, t, p);
     if (Finite(p) && cost < best_cost) {
       best_cost = cost;
@@ -495,12 +313,12 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     }
   }
   if (!(best_cost < HUGE_VAL)) {
-    out.model.params = starts.front();
-    out.model.lut.color = t;
-    out.message = "the lobe fit produced no finite solution";
+    out.params.params = starts.front();
+    out.params.lut.color = t;
+    out.report.message = "the lobe fit produced no finite solution";
     return out;
   }
-  out.alternations = 1;
+  out.report.alternations = 1;
   // Alternation: T in closed form per view and channel (eq. 4), then the
   // lobes again, until the mean relative change of T is small.
   bool lut_converged = false;
@@ -530,46 +348,46 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
           t[k][c] = updated;
         }
       }
-      out.lut_change = counted ? change / counted : 0.0;
+      out.report.lut_change = counted ? change / counted : 0.0;
       // Later passes start next to their solution: a few iterations do.
       LafortuneFitOptions later = options;
       later.max_iterations =
           std::min(options.max_iterations, kLaterPassIterations);
       LafortuneParams p = best;
-      out.iterations += FitLobes(samples, t, later, false, &p).iterations;
-      ++out.alternations;
+      out.report.iterations += FitLobes(samples, t, later, false, &p);
+      ++out.report.alternations;
       if (Finite(p)) best = p;
-      if (out.lut_change < options.lut_threshold) {
+      if (out.report.lut_change < options.lut_threshold) {
         lut_converged = true;
         break;
       }
     }
   }
   if (!options.lookup_table) {
-    out.converged = true;
-    out.termination = "no lookup table: one lobe fit";
+    out.report.converged = true;
+    out.report.termination = "no lookup table: one lobe fit";
   } else if (lut_converged) {
-    out.converged = true;
-    out.termination = "lookup table converged";
+    out.report.converged = true;
+    out.report.termination = "lookup table converged";
   } else {
     char why[160];
     std::snprintf(why, sizeof(why),
                   "alternation cap (%d) reached; the lookup table still "
                   "changed by %.3g (threshold %.3g)",
-                  options.max_alternations, out.lut_change,
+                  options.max_alternations, out.report.lut_change,
                   options.lut_threshold);
-    out.termination = why;
+    out.report.termination = why;
   }
   // A first pass on a subsample is refined on all samples when no later
   // pass did (no lookup table, or a single alternation): a lobe fitted to a
   // quarter of the samples alone can be narrow and wrong between them.
-  if (&first != &samples && out.alternations == 1) {
+  if (&first != &samples && out.report.alternations == 1) {
     LafortuneParams p = best;
-    out.iterations += FitLobes(samples, t, options, false, &p).iterations;
+    out.report.iterations += FitLobes(samples, t, options, false, &p);
     if (Finite(p)) best = p;
   }
-  out.model.params = best;
-  out.model.lut.color = t;
+  out.params.params = best;
+  out.params.lut.color = t;
   double se = 0.0, ss = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const glm::dvec3 m =
@@ -578,11 +396,12 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     se += glm::dot(d, d);
     ss += glm::dot(samples.value[i], samples.value[i]);
   }
-  out.final_cost = 0.5 * Cost(samples, t, best);
-  out.rms = std::sqrt(se / (3.0 * samples.size()));
-  out.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
-  out.usable = std::isfinite(out.rms);
-  if (!out.usable) out.message = NonFiniteSample(samples, t, best);
+  out.report.final_cost = 0.5 * Cost(samples, t, best);
+  out.report.rms = std::sqrt(se / (3.0 * samples.size()));
+  out.report.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+  out.report.usable = std::isfinite(out.report.rms);
+  if (!out.report.usable)
+    out.report.message = NonFiniteSample(samples, t, best);
   return out;
 }
 

@@ -10,72 +10,12 @@
 #include <vector>
 
 #include "fitting/fit_result.h"
+#include "fitting/lafortune_samples.h"
 #include "fitting/linear_solver.h"
 #include "io/table.h"
 #include "models/lafortune.h"
 
 namespace clothfit {
-
-// The samples of one texel: directions in its local frame, values
-// (cosine-weighted), 1/sigma^2 * weight, and the index of the view.
-struct TexelSamples {
-  // The texel's average normal (surface frame); l and v are in the frame
-  // MakeTexelFrame(normal).
-  glm::dvec3 normal{0.0, 0.0, 1.0};
-  std::vector<glm::dvec3> l, v, value, weight;
-  std::vector<int> view;           // index into views
-  std::vector<int> count_rows;     // table rows merged into each sample
-  std::vector<int> source_line;    // table line of each sample's first row
-  std::vector<glm::dvec3> views;   // the distinct view directions
-  std::vector<double> view_alpha;  // mean alpha of each view's samples
-  size_t size() const { return l.size(); }
-};
-
-// The distinct view directions (wo) and (light, view) pairs of a table,
-// equal to 1e-9, in order of first appearance, and each row's view and
-// pair. Built once per table; the views are shared by all texels so that
-// their lookup tables line up.
-class ViewIndex {
- public:
-  explicit ViewIndex(const MeasurementTable& table);
-  const std::vector<glm::dvec3>& views() const { return views_; }
-  int RowView(size_t row) const { return row_view_[row]; }
-  int RowPair(size_t row) const { return row_pair_[row]; }
-  int pairs() const { return pairs_; }
-
- private:
-  std::vector<glm::dvec3> views_;
-  std::vector<int> row_view_, row_pair_;
-  int pairs_ = 0;
-};
-
-// The samples of the given rows of a table, as the cosine-weighted
-// quantity, with all of the index's views (a view without samples gets
-// alpha 1 and keeps T = 1). Rows with the same (light, view) pair are
-// merged into one sample: their weighted mean value, with the sum of their
-// weights, which leaves the least-squares minimiser unchanged (sum_i w_i
-// (m - y_i)^2 = W (m - y_mean)^2 + const) and keeps the work of a pooled
-// mip-level fit at that of one texel. Rows that are not reflection (wi.z
-// <= 0 or wo.z <= 0) are skipped and counted in *skipped (may be null).
-// A table with normal columns gives the rows' mean normal as the texel's
-// (a pooled group: the average of its texels' normals, as the paper's
-// Section 5.1), and l, v are rotated into its frame; else the surface
-// frame.
-// Throws InputError for a transmittance table.
-TexelSamples CollectSamples(const MeasurementTable& table,
-                            const ViewIndex& views,
-                            const std::vector<size_t>& rows, int* skipped);
-
-// RMS and relative RMS error of a model over table rows (as rho). Rows
-// at a stored view use its lookup-table entry directly (no interpolation).
-// view_relative_rms (may be null): the relative RMS error of each view's
-// colour - the mean over the view's rows (all its lights) of model and data
-// - over the views: the view-dependent colour the paper's Fig. 5 shows
-// (colour shifts at grazing views), which the lookup table is for.
-void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
-                     const ViewIndex& views, const std::vector<size_t>& rows,
-                     double* rms, double* relative_rms,
-                     double* view_relative_rms = nullptr);
 
 struct LafortuneFitOptions {
   int lobes = 2;               // K, 0 to 3
@@ -120,22 +60,15 @@ struct LafortuneFitOptions {
   const LafortuneModel* start = nullptr;
 };
 
-struct LafortuneFitResult {
-  LafortuneModel model;
-  bool usable = false;
-  std::string message;
-  int alternations = 0;
-  int iterations = 0;         // Levenberg-Marquardt iterations, all passes
-  double rms = 0.0;           // of model - value (cosine-weighted)
-  double relative_rms = 0.0;  // rms / rms(value)
-  double lut_change = 0.0;    // mean relative change of T, last pass
-  // 1/2 sum of weighted squared residuals (cosine-weighted), as Ceres'.
-  double final_cost = 0.0;
-  // The alternation stopped because T changed less than lut_threshold (or
-  // there is no lookup table), not at the max_alternations cap.
-  bool converged = false;
-  std::string termination;  // why it stopped, in words
-};
+// The fitted model (lobes, lookup table, normal) and its report: usable,
+// converged (the alternation stopped because T changed less than
+// lut_threshold, or there is no lookup table; not at the
+// max_alternations cap), termination (in words), iterations (all passes),
+// alternations, lut_change (last pass), final_cost (1/2 sum of weighted
+// squared residuals as rho, as Ceres'), rms and relative_rms (of the
+// samples as rho), residuals and rows. No standard deviations: the scale
+// between T and the lobes is not identifiable (docs/decisions.md).
+using LafortuneFitResult = FitResult<LafortuneModel>;
 
 // Never throws for data problems: an empty texel, all-zero values or views
 // without signal give a usable zero/diffuse model or usable = false with a

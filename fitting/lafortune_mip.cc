@@ -5,55 +5,122 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
-#include <nlohmann/json.hpp>
 #include <thread>
 #include <unordered_map>
 
 #include "io/input_error.h"
+#include "models/mip_levels.h"
 
 namespace clothfit {
-namespace {
-
-const char* const kRgb[] = {"R", "G", "B"};
-
-}  // namespace
-
-TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
-                      const std::vector<size_t>& rows,
-                      const LafortuneMipOptions& options) {
-  const TexelSamples samples = CollectSamples(table, views, rows, nullptr);
-  TexelFit best;
+LafortuneFitResult FitTexelRows(const MeasurementTable& table,
+                                const ViewIndex& views,
+                                const std::vector<size_t>& rows,
+                                const LafortuneMipOptions& options) {
+  int skipped = 0;
+  const TexelSamples samples = CollectSamples(table, views, rows, &skipped);
+  LafortuneFitResult best;
   std::vector<int> counts = {options.fit.lobes};
   if (options.tolerance > 0.0) counts = {0, 1, 2, 3};
   for (int k : counts) {
     LafortuneFitOptions o = options.fit;
     o.lobes = k;
-    const LafortuneFitResult r = FitLafortune(samples, o);
-    TexelFit fit;
-    fit.model = r.model;
-    fit.lobes = k;
-    fit.samples = static_cast<int>(rows.size());
-    fit.usable = r.usable;
-    fit.message = r.message;
-    fit.alternations = r.alternations;
-    fit.iterations = r.iterations;
-    fit.lut_change = r.lut_change;
-    fit.final_cost = r.final_cost;
-    fit.converged = r.converged;
-    fit.termination = r.termination;
+    LafortuneFitResult fit = FitLafortune(samples, o);
     // Errors over the rows, not the merged samples.
-    LafortuneErrors(r.model, table, views, rows, &fit.rms, &fit.relative_rms,
-                    &fit.view_relative_rms);
-    const bool better =
-        !best.usable || (fit.usable && fit.relative_rms < best.relative_rms);
+    fit.report.rows_not_used = skipped;
+    LafortuneErrors(fit.params, table, views, rows, &fit.report.rms,
+                    &fit.report.relative_rms, &fit.report.view_relative_rms);
+    const bool better = !best.report.usable ||
+                        (fit.report.usable &&
+                         fit.report.relative_rms < best.report.relative_rms);
     if (k == counts.front() || better) best = fit;
-    if (options.tolerance > 0.0 && fit.usable &&
-        fit.relative_rms <= options.tolerance) {
+    if (options.tolerance > 0.0 && fit.report.usable &&
+        fit.report.relative_rms <= options.tolerance) {
       best = fit;  // the smallest K that meets the tolerance
       break;
     }
   }
   return best;
+}
+
+namespace {
+
+// The values of a Lafortune model's table entries as report parameters
+// ("diffuse_r", "lobes[1].N_b"), free, with their fit bounds.
+std::vector<ParameterReport> LafortuneParameterReports(
+    const LafortuneParams& p) {
+  std::vector<ParameterReport> out;
+  auto add = [&](const ParamInfo& info, const std::string& prefix,
+                 const glm::dvec3& field) {
+    for (int c = 0; c < 3; ++c) {
+      ParameterReport r;
+      r.name = prefix + info.name + ChannelSuffix(c);
+      r.value = field[c];
+      r.free = true;
+      r.lower = info.fit_lo;
+      r.upper = info.fit_hi;
+      out.push_back(r);
+    }
+  };
+  add(kLafortuneDiffuse, "", p.diffuse);
+  for (size_t k = 0; k < p.lobes.size(); ++k) {
+    const std::string prefix = "lobes[" + std::to_string(k) + "].";
+    VisitParamsConst(p.lobes[k],
+                     [&](const ParamInfo& info, const glm::dvec3& field) {
+                       add(info, prefix, field);
+                     });
+  }
+  return out;
+}
+
+}  // namespace
+
+LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
+                                     const LafortuneMipOptions& options) {
+  CountNotReflection(table, "lafortune");
+  const ViewIndex views(table);
+  std::vector<size_t> rows(table.rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+  LafortuneFitResult fit = FitTexelRows(table, views, rows, options);
+  fit.report.parameters = LafortuneParameterReports(fit.params.params);
+  return fit;
+}
+
+LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
+  LafortuneMipSummary out;
+  for (size_t l = 0; l < result.levels.size(); ++l) {
+    const LafortuneLevel& level = result.levels[l];
+    LafortuneLevelSummary s;
+    s.width = level.width;
+    s.height = level.height;
+    s.samples = level.samples;
+    for (size_t i = 0; i < level.texels.size(); ++i) {
+      const LafortuneFitResult& t = level.texels[i];
+      const std::string where = "level " + std::to_string(l) + ", texel (" +
+                                std::to_string(i % level.width) + ", " +
+                                std::to_string(i / level.width) + "): ";
+      if (!t.report.usable && out.unusable++ == 0) {
+        out.first_unusable = where + t.report.message;
+      }
+      if (t.report.usable && !t.report.converged && out.not_converged++ == 0) {
+        out.first_not_converged = where + t.report.termination;
+      }
+      out.worst_relative_rms =
+          std::max(out.worst_relative_rms, t.report.relative_rms);
+      s.mean_relative_rms += t.report.relative_rms;
+      s.mean_view_relative_rms += t.report.view_relative_rms;
+      s.mean_alternations += t.report.alternations;
+      s.mean_iterations += t.report.iterations;
+      ++s.lobe_counts[std::clamp(static_cast<int>(t.params.params.lobes.size()),
+                                 0, 3)];
+    }
+    const double n = std::max<size_t>(1, level.texels.size());
+    s.mean_relative_rms /= n;
+    s.mean_view_relative_rms /= n;
+    s.mean_alternations /= n;
+    s.mean_iterations /= n;
+    out.levels.push_back(s);
+  }
+  return out;
 }
 
 LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
@@ -90,10 +157,10 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
       texel_rows[table.rows[i].t * width + table.rows[i].s].push_back(i);
     }
   }
-  std::vector<std::pair<int, int>> sizes = {{width, height}};
-  while (options.mip && (sizes.back().first > 1 || sizes.back().second > 1)) {
-    sizes.push_back({std::max(1, sizes.back().first / 2),
-                     std::max(1, sizes.back().second / 2)});
+  std::vector<std::pair<int, int>> sizes;
+  const int levels = options.mip ? MipLevelCount(width, height) : 1;
+  for (int l = 0; l < levels; ++l) {
+    sizes.push_back({MipLevelSize(width, l), MipLevelSize(height, l)});
   }
   auto group_rows = [&](size_t l) {  // level l's lists -> level l + 1's
     const auto [w, h] = sizes[l];
@@ -144,7 +211,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
         for (int x = 0; x < below.width; ++x) {
           const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
           children[y2 * w2 + x2].push_back(
-              &below.texels[y * below.width + x].model);
+              &below.texels[y * below.width + x].params);
         }
       }
     }
@@ -186,221 +253,18 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
 }
 
 ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
-  int lobes = 0;
+  std::vector<LafortuneTexelMap> levels;
   for (const LafortuneLevel& level : result.levels) {
-    for (const TexelFit& t : level.texels) {
-      lobes = std::max(lobes, static_cast<int>(t.model.params.lobes.size()));
+    LafortuneTexelMap map;
+    map.width = level.width;
+    map.height = level.height;
+    for (const LafortuneFitResult& t : level.texels) {
+      map.texels.push_back(t.params);
+      map.relative_rms.push_back(t.report.relative_rms);
     }
+    levels.push_back(std::move(map));
   }
-  ParamMipmap m;
-  m.channels = {"lobes", "relative_rms"};
-  for (const char* c : {"X", "Y", "Z"}) {
-    m.channels.push_back(std::string("normal.") + c);
-  }
-  for (const char* c : kRgb) m.channels.push_back(std::string("diffuse.") + c);
-  for (int k = 0; k < lobes; ++k) {
-    for (const char* p : {"Cx", "Cy", "Cz", "N"}) {
-      for (const char* c : kRgb) {
-        m.channels.push_back("lobe" + std::to_string(k) + "." + p + "." + c);
-      }
-    }
-  }
-  for (size_t v = 0; v < result.views.size(); ++v) {
-    for (const char* c : {"R", "G", "B", "A"}) {
-      m.channels.push_back("lut." + std::to_string(v) + "." + c);
-    }
-  }
-  for (const LafortuneLevel& level : result.levels) {
-    ParamImage image;
-    image.width = level.width;
-    image.height = level.height;
-    image.data.assign(m.channels.size(),
-                      std::vector<float>(level.texels.size(), 0.0f));
-    for (size_t i = 0; i < level.texels.size(); ++i) {
-      const TexelFit& t = level.texels[i];
-      const LafortuneParams& p = t.model.params;
-      size_t ch = 0;
-      image.data[ch++][i] = static_cast<float>(p.lobes.size());
-      image.data[ch++][i] = static_cast<float>(t.relative_rms);
-      for (int c = 0; c < 3; ++c) image.data[ch++][i] = t.model.normal[c];
-      for (int c = 0; c < 3; ++c) image.data[ch++][i] = p.diffuse[c];
-      for (int k = 0; k < lobes; ++k) {
-        const bool has = k < static_cast<int>(p.lobes.size());
-        for (int q = 0; q < 4; ++q) {
-          for (int c = 0; c < 3; ++c) {
-            double value = 0.0;
-            if (has) {
-              const LafortuneLobe& lobe = p.lobes[k];
-              const glm::dvec3* fields[] = {&lobe.cx, &lobe.cy, &lobe.cz,
-                                            &lobe.n};
-              value = (*fields[q])[c];
-            }
-            image.data[ch++][i] = static_cast<float>(value);
-          }
-        }
-      }
-      const ViewTable& lut = t.model.lut;
-      for (size_t v = 0; v < result.views.size(); ++v) {
-        const bool has = v < lut.color.size();
-        for (int c = 0; c < 3; ++c) {
-          image.data[ch++][i] =
-              has ? static_cast<float>(lut.color[v][c]) : 1.0f;
-        }
-        image.data[ch++][i] = has ? static_cast<float>(lut.alpha[v]) : 1.0f;
-      }
-    }
-    m.levels.push_back(std::move(image));
-  }
-  nlohmann::ordered_json meta;
-  meta["model"] = "lafortune";
-  meta["lobes"] = lobes;
-  meta["frame"] =
-      "directions and normal.XYZ in the surface frame (normal +z, warp +x); "
-      "the lobes in each texel's frame: n = normal.XYZ, b = normalize(n x "
-      "x), t = b x n";
-  meta["quantity"] = "cosine_weighted";
-  meta["lut_interpolation"] = "shepard, angular distance power 3";
-  meta["units"] = {{"diffuse", "unitless reflectance"},
-                   {"Cx/Cy/Cz", "unitless"},
-                   {"N", "unitless exponent"},
-                   {"normal", "unit vector (surface frame)"},
-                   {"lut", "unitless factor (RGB) and coverage (A)"},
-                   {"relative_rms", "RMS(model - data) / RMS(data)"}};
-  nlohmann::ordered_json views = nlohmann::ordered_json::array();
-  for (const glm::dvec3& v : result.views) views.push_back({v.x, v.y, v.z});
-  meta["views"] = views;
-  m.metadata_json = meta.dump();
-  return m;
-}
-
-namespace {
-
-const char* const kLobeFields[] = {"Cx", "Cy", "Cz", "N"};
-
-// "lobe{k}.{field}.{R,G,B}" for entry q = 3 field + channel.
-std::string LobeChannel(int k, int q) {
-  return "lobe" + std::to_string(k) + "." + kLobeFields[q / 3] + "." +
-         kRgb[q % 3];
-}
-
-// Reads texels of a mip map written by ToParamMipmap: the metadata parsed
-// and every channel looked up once, then each texel by index.
-class MipmapTexelReader {
- public:
-  explicit MipmapTexelReader(const ParamMipmap& mipmap) : mipmap_(mipmap) {
-    for (size_t c = 0; c < mipmap.channels.size(); ++c) {
-      index_.emplace(mipmap.channels[c], static_cast<int>(c));
-    }
-    const nlohmann::json meta = nlohmann::json::parse(mipmap.metadata_json);
-    for (const auto& v : meta.at("views")) {
-      views_.push_back(glm::dvec3(v[0].get<double>(), v[1].get<double>(),
-                                  v[2].get<double>()));
-    }
-    for (int c = 0; c < 3; ++c) {
-      diffuse_[c] = Find(std::string("diffuse.") + kRgb[c]);
-      normal_[c] = Find(std::string("normal.") + "XYZ"[c]);
-    }
-    lobes_ = Find("lobes");
-    // Lobe channels as far as they go (a texel's count is checked below).
-    for (int k = 0;; ++k) {
-      std::array<int, 12> lobe;
-      for (int q = 0; q < 12; ++q) lobe[q] = Find(LobeChannel(k, q));
-      if (lobe[0] < 0) break;
-      lobe_channels_.push_back(lobe);
-    }
-    for (size_t v = 0; v < views_.size(); ++v) {
-      const std::string prefix = "lut." + std::to_string(v) + ".";
-      lut_.push_back({Find(prefix + "R"), Find(prefix + "G"),
-                      Find(prefix + "B"), Find(prefix + "A")});
-    }
-  }
-
-  LafortuneModel Texel(int level, size_t i) const {
-    const ParamImage& image = mipmap_.levels[level];
-    auto value = [&](int channel, const std::string& name) {
-      if (channel < 0) {
-        throw InputError("parameter mip map: no channel '" + name + "'");
-      }
-      return static_cast<double>(image.data[channel][i]);
-    };
-    LafortuneModel m;
-    for (int c = 0; c < 3; ++c) {
-      m.params.diffuse[c] =
-          value(diffuse_[c], std::string("diffuse.") + kRgb[c]);
-    }
-    const glm::dvec3 normal(value(normal_[0], "normal.X"),
-                            value(normal_[1], "normal.Y"),
-                            value(normal_[2], "normal.Z"));
-    if (glm::length(normal) > 0.0) m.normal = glm::normalize(normal);
-    const int lobes = static_cast<int>(value(lobes_, "lobes"));
-    for (int k = 0; k < lobes; ++k) {
-      if (k >= static_cast<int>(lobe_channels_.size())) {
-        value(-1, LobeChannel(k, 0));
-      }
-      const std::array<int, 12>& ch = lobe_channels_[k];
-      LafortuneLobe lobe;
-      glm::dvec3* fields[] = {&lobe.cx, &lobe.cy, &lobe.cz, &lobe.n};
-      for (int q = 0; q < 12; ++q) {
-        (*fields[q / 3])[q % 3] =
-            value(ch[q], ch[q] < 0 ? LobeChannel(k, q) : "");
-      }
-      m.params.lobes.push_back(lobe);
-    }
-    for (size_t v = 0; v < views_.size(); ++v) {
-      const std::string name = "lut." + std::to_string(v);
-      m.lut.views.push_back(views_[v]);
-      m.lut.color.push_back(glm::dvec3(value(lut_[v][0], name + ".R"),
-                                       value(lut_[v][1], name + ".G"),
-                                       value(lut_[v][2], name + ".B")));
-      m.lut.alpha.push_back(value(lut_[v][3], name + ".A"));
-    }
-    return m;
-  }
-
- private:
-  int Find(const std::string& name) const {
-    const auto it = index_.find(name);
-    return it == index_.end() ? -1 : it->second;
-  }
-
-  const ParamMipmap& mipmap_;
-  std::unordered_map<std::string, int> index_;
-  std::vector<glm::dvec3> views_;
-  int diffuse_[3], normal_[3], lobes_;
-  std::vector<std::array<int, 12>> lobe_channels_;
-  std::vector<std::array<int, 4>> lut_;
-};
-
-void CheckLevel(const ParamMipmap& mipmap, int level) {
-  if (level < 0 || level >= static_cast<int>(mipmap.levels.size())) {
-    throw InputError("mip level " + std::to_string(level) + " out of range");
-  }
-}
-
-}  // namespace
-
-LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
-                                    int y) {
-  CheckLevel(mipmap, level);
-  const ParamImage& image = mipmap.levels[level];
-  if (x < 0 || y < 0 || x >= image.width || y >= image.height) {
-    throw InputError("texel out of range");
-  }
-  return MipmapTexelReader(mipmap).Texel(
-      level, static_cast<size_t>(y) * image.width + x);
-}
-
-std::vector<LafortuneModel> LevelFromParamMipmap(const ParamMipmap& mipmap,
-                                                 int level) {
-  CheckLevel(mipmap, level);
-  const MipmapTexelReader reader(mipmap);
-  const ParamImage& image = mipmap.levels[level];
-  std::vector<LafortuneModel> texels;
-  texels.reserve(static_cast<size_t>(image.width) * image.height);
-  for (size_t i = 0; i < static_cast<size_t>(image.width) * image.height; ++i) {
-    texels.push_back(reader.Texel(level, i));
-  }
-  return texels;
+  return ToParamMipmap(levels, result.views);
 }
 
 }  // namespace clothfit

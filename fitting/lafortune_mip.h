@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "fitting/lafortune_fit.h"
-#include "io/param_mipmap.h"
+#include "io/lafortune_mipmap.h"
 
 namespace clothfit {
 
@@ -27,27 +27,12 @@ struct LafortuneMipOptions {
   std::function<void(int, int)> progress;
 };
 
-struct TexelFit {
-  LafortuneModel model;
-  int lobes = 0;
-  int samples = 0;   // table rows of the texel
-  double rms = 0.0;  // over those rows (as rho)
-  double relative_rms = 0.0;
-  double view_relative_rms = 0.0;  // of the per-view colour (LafortuneErrors)
-  bool usable = false;
-  std::string message;  // why not usable
-  int alternations = 0, iterations = 0;
-  double lut_change = 0.0;
-  double final_cost = 0.0;  // as LafortuneFitResult's
-  bool converged = false;   // as LafortuneFitResult's
-  std::string termination;
-};
-
 struct LafortuneLevel {
   int width = 0, height = 0;
-  std::vector<TexelFit> texels;  // y * width + x
-  size_t samples = 0;            // all samples of the level
-  double seconds = 0.0;          // wall time of the level's fits
+  // y * width + x; report.rows: the texel's table rows, errors over them.
+  std::vector<LafortuneFitResult> texels;
+  size_t samples = 0;    // all samples of the level
+  double seconds = 0.0;  // wall time of the level's fits
 };
 
 struct LafortuneMipResult {
@@ -60,9 +45,19 @@ struct LafortuneMipResult {
 // One texel (or a whole table): the fit of the given rows with
 // options.fit, or with options.tolerance > 0 the smallest K in 0..3 whose
 // relative RMS over the rows is at most the tolerance (else the best K).
-TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
-                      const std::vector<size_t>& rows,
-                      const LafortuneMipOptions& options);
+LafortuneFitResult FitTexelRows(const MeasurementTable& table,
+                                const ViewIndex& views,
+                                const std::vector<size_t>& rows,
+                                const LafortuneMipOptions& options);
+
+// One model for a whole table (its s,t columns, if any, ignored): the fit
+// of every row as FitTexelRows, the rows that are not reflection left out
+// and counted in report.rows_not_used (InputError naming the table when
+// none is left), and the model's values in report.parameters (without
+// standard deviations: the scale between T and the lobes is not
+// identifiable).
+LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
+                                     const LafortuneMipOptions& options);
 
 // Throws InputError for a table without s,t columns or a transmittance
 // table. Level 0 is (max s + 1) x (max t + 1); a level of odd size pools
@@ -70,19 +65,26 @@ TexelFit FitTexelRows(const MeasurementTable& table, const ViewIndex& views,
 LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
                                    const LafortuneMipOptions& options);
 
-// The result as named channels per level (io/param_mipmap.h): "lobes",
-// "relative_rms", "diffuse.R/G/B", "lobe{k}.{Cx,Cy,Cz,N}.{R,G,B}" for the
-// largest K, and "lut.{v}.{R,G,B,A}" per view; metadata: the views and
-// units. Texels with fewer lobes have zeros in the others.
-ParamMipmap ToParamMipmap(const LafortuneMipResult& result);
+// What a texel map's fits came to, per level and over all: the texels
+// that reached no usable solution or stopped at the alternation cap, each
+// with where the first one is and why.
+struct LafortuneLevelSummary {
+  int width = 0, height = 0;
+  size_t samples = 0;
+  double mean_relative_rms = 0.0, mean_view_relative_rms = 0.0;
+  int lobe_counts[4] = {0, 0, 0, 0};  // texels with 0..3 lobes
+  double mean_alternations = 0.0, mean_iterations = 0.0;
+};
+struct LafortuneMipSummary {
+  std::vector<LafortuneLevelSummary> levels;
+  int unusable = 0, not_converged = 0;
+  // "level L, texel (x, y): why" of the first of each.
+  std::string first_unusable, first_not_converged;
+  double worst_relative_rms = 0.0;
+};
+LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result);
 
-// Texel (x, y) of `level` read back from a mip map written by
-// ToParamMipmap (its metadata holds the views).
-LafortuneModel TexelFromParamMipmap(const ParamMipmap& mipmap, int level, int x,
-                                    int y);
-// Every texel of `level` (y * width + x), reading the index once: what a
-// renderer loads (api/material.h).
-std::vector<LafortuneModel> LevelFromParamMipmap(const ParamMipmap& mipmap,
-                                                 int level);
+// The result as a parameter mip map (io/lafortune_mipmap.h).
+ParamMipmap ToParamMipmap(const LafortuneMipResult& result);
 
 }  // namespace clothfit

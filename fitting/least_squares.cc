@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <thread>
 
 #include "fitting/ceres_linear_solver_internal.h"
 #include "io/input_error.h"
@@ -270,17 +271,6 @@ std::string NonFiniteRow(const LeastSquaresProblem& lsq,
   return "";
 }
 
-double EvaluateCost(const LeastSquaresProblem& lsq,
-                    const std::vector<double>& x0) {
-  std::vector<double> x = x0;
-  BuiltProblem built;
-  Build(lsq, SolverOptions(), &x, &built);
-  double cost = 0.0;
-  built.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr,
-                          nullptr, nullptr);
-  return std::isfinite(cost) ? cost : HUGE_VAL;
-}
-
 FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                             const std::vector<std::vector<double>>& starts,
                             const SolverOptions& options,
@@ -306,7 +296,11 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     ceres::Solver::Options solver_options;
     SetCeresLinearSolver(options.linear_solver, &solver_options);
     solver_options.max_num_iterations = options.max_iterations;
-    solver_options.num_threads = options.num_threads;
+    solver_options.num_threads =
+        options.num_threads > 0
+            ? options.num_threads
+            : std::max(1,
+                       static_cast<int>(std::thread::hardware_concurrency()));
     solver_options.function_tolerance = 1e-6;
     solver_options.parameter_tolerance = 1e-10;
     solver_options.gradient_tolerance = 1e-14;

@@ -1,7 +1,9 @@
 // The shared Ceres machinery of the fits: one flat parameter vector split
-// into blocks, bounds, free/fixed entries, robust loss, multi-start, and the
-// covariance-based report. Each model's fit (thread_fit.cc, cloth_fit.cc)
-// supplies the residual functors; Eigen and Ceres stay inside fitting/*.cc.
+// into blocks, bounds from the models' parameter tables, free/fixed
+// entries, robust loss, multi-start, and the covariance-based report. Each
+// model's fit supplies an evaluator for the one residual
+// (fitting/model_residual_internal.h); Eigen and Ceres stay inside
+// fitting/*.cc.
 #pragma once
 
 #include <functional>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "fitting/fit_result.h"
+#include "models/params.h"
 
 namespace ceres {
 class LossFunction;
@@ -29,6 +32,37 @@ struct ParameterSpec {
   // the fit is reported as not converged.
   bool physical_bounds = false;
 };
+
+// The spec of a table entry: its fit bounds, free.
+inline ParameterSpec SpecOf(const ParamInfo& info, const std::string& name) {
+  return ParameterSpec{name, info.fit_lo, info.fit_hi, true, info.physical};
+}
+
+// One spec per flat entry of p (models/params.h ToArray), named `prefix`
+// + the entry's name ("threads[0].albedo_r").
+template <typename P>
+std::vector<ParameterSpec> ParameterSpecs(const P& p,
+                                          const std::string& prefix = "") {
+  std::vector<ParameterSpec> specs;
+  for (const FlatEntry& e : FlatEntries(p)) {
+    specs.push_back(SpecOf(*e.info, prefix + e.Name()));
+  }
+  return specs;
+}
+
+// A factor on the whole model for data on an arbitrary scale (--fit-scale).
+inline constexpr ParamInfo kFitScale = {
+    "scale",
+    "unitless",
+    "factor on the model for data on an arbitrary scale (the parameter "
+    "file holds the model)",
+    {0.0, kInfinity, true, false},
+    1e-6,
+    1e6,
+    false,
+    {1.0},
+    "clothfit",
+    1};
 
 // A problem over the blocks of `x`: block b holds x[offset_b, offset_b +
 // size_b). `add_residuals` adds the residual blocks to `problem`, given the
@@ -76,9 +110,5 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
 // directions and the parameters; "" when every value is finite.
 std::string NonFiniteRow(const LeastSquaresProblem& lsq,
                          const std::vector<double>& x);
-
-// Half the sum of squared residuals at x (no solve), for ranking starts.
-double EvaluateCost(const LeastSquaresProblem& problem,
-                    const std::vector<double>& x);
 
 }  // namespace clothfit

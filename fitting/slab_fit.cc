@@ -1,7 +1,5 @@
 #include "fitting/slab_fit.h"
 
-#include <ceres/ceres.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,63 +7,48 @@
 #include <nlohmann/json.hpp>
 
 #include "fitting/least_squares.h"
+#include "fitting/model_residual_internal.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
 namespace {
 
-// Search limits of tau: beyond them the data cannot tell tau apart (the
-// slab is clear or opaque), so a fit ending there is reported as such.
-constexpr double kTauLower = 1e-6;
-constexpr double kTauUpper = 100.0;
+// One row of one table (fitting/model_residual_internal.h). A one-channel
+// table has one residual per row (channel 0); in an rgb fit that is a
+// direct-transmittance table, whose value is that of every channel when
+// they share tau.
+using Sample = FitRow;
 
-// One row of one table, and the factor sqrt(weight) / sigma per channel.
-// A one-channel table has one residual per row (channel 0); in an rgb fit
-// that is a direct-transmittance table, whose value is that of every
-// channel when they share tau.
-struct Sample {
-  const TableRow* row;
-  Quantity quantity;
-  glm::dvec3 scale;
-  int channels;
-  // scale^2 for the channels that have a residual, 0 for the others.
-  glm::dvec3 Weight2() const {
-    return channels == 1 ? glm::dvec3(scale.x * scale.x, 0.0, 0.0)
+// The squared residual factors (fitting/residual_weight.h) of the channels
+// that have a residual, 0 for the others.
+glm::dvec3 Weight2(const Sample& s) {
+  const glm::dvec3 scale = ResidualScale(*s.row);
+  return s.channels == 1 ? glm::dvec3(scale.x * scale.x, 0.0, 0.0)
                          : scale * scale;
-  }
-};
+}
 
-// residual_c = (model_c - measured_c) sqrt(weight) / sigma_c, c < kChannels.
-// With a shared tau, x[0] is the tau of every channel.
-template <int kChannels>
-struct SlabResidual {
-  glm::dvec3 wi, wo, value, scale;
-  Quantity quantity;
+// The slab's value at sample i; with a shared tau, entry 0 of the block is
+// the tau of every channel.
+struct SlabEvaluator {
+  std::vector<Sample> samples;
   bool shared_tau;
 
   template <typename T>
-  bool operator()(const T* x, T* residual) const {
-    SlabParamsT<T> p = SlabParamsFromArray(x);
-    if (shared_tau) p.tau = Vec3<T>(x[0]);
-    const Vec3<T> model = SlabValue(p, wi, wo, quantity);
-    for (int c = 0; c < kChannels; ++c) {
-      residual[c] = (model[c] - T(value[c])) * T(scale[c]);
-    }
-    return true;
-  }
-
-  static ceres::CostFunction* Create(const Sample& s, bool shared_tau) {
-    return new ceres::AutoDiffCostFunction<SlabResidual, kChannels,
-                                           SlabParams::kSize>(new SlabResidual{
-        s.row->wi, s.row->wo, s.row->value, s.scale, s.quantity, shared_tau});
+  Vec3<T> operator()(const T* const* blocks, size_t i) const {
+    SlabParamsT<T> p;
+    FromArray(blocks[0], &p);
+    if (shared_tau) p.tau = Vec3<T>(blocks[0][0]);
+    const Sample& s = samples[i];
+    return Value(p, s.row->wi, s.row->wo, s.quantity);
   }
 };
 
 // The parameters of the flat vector x (ToArray layout) as fitted.
 SlabParams FromX(const std::vector<double>& x, bool shared_tau,
                  bool one_channel) {
-  SlabParams p = SlabParamsFromArray(x.data());
+  SlabParams p;
+  FromArray(x.data(), &p);
   if (shared_tau) p.tau = glm::dvec3(p.tau.x);
   if (one_channel) p.albedo = glm::dvec3(p.albedo.x);
   return p;
@@ -74,11 +57,7 @@ SlabParams FromX(const std::vector<double>& x, bool shared_tau,
 std::vector<Sample> Samples(const std::vector<MeasurementTable>& tables) {
   std::vector<Sample> samples;
   for (const MeasurementTable& table : tables) {
-    for (const TableRow& row : table.rows) {
-      samples.push_back({&row, table.quantity,
-                         glm::dvec3(std::sqrt(row.weight)) / row.sigma,
-                         table.channels});
-    }
+    for (const FitRow& row : TableFitRows(table)) samples.push_back(row);
   }
   return samples;
 }
@@ -104,8 +83,8 @@ std::vector<std::vector<double>> Starts(const std::vector<Sample>& samples,
     unit.albedo = glm::dvec3(1.0);
     glm::dvec3 sgg(0.0), sgv(0.0), svv(0.0), direct(0.0);
     for (const Sample& s : samples) {
-      const glm::dvec3 m = SlabValue(unit, s.row->wi, s.row->wo, s.quantity);
-      const glm::dvec3 s2 = s.Weight2();
+      const glm::dvec3 m = Value(unit, s.row->wi, s.row->wo, s.quantity);
+      const glm::dvec3 s2 = Weight2(s);
       if (s.quantity == Quantity::kTransmittance) {
         direct += s2 * (m - s.row->value) * (m - s.row->value);
       } else {
@@ -160,7 +139,7 @@ std::vector<std::vector<double>> Starts(const std::vector<Sample>& samples,
       if (specs[c].free) p.tau[c] = taus[g];
       p.albedo[c] = albedo[g][c];
     }
-    std::vector<double> x(SlabParams::kSize);
+    std::vector<double> x(FlatSize(p));
     ToArray(p, x.data());
     starts.push_back(x);
   }
@@ -183,7 +162,7 @@ Baseline FitBaseline(const std::vector<Sample>& samples, int channels,
   glm::dvec3 skk(0.0), skv(0.0), sd(0.0), sdv(0.0);
   bool any_bsdf = false, any_direct = false;
   for (const Sample& s : samples) {
-    const glm::dvec3 s2 = s.Weight2();
+    const glm::dvec3 s2 = Weight2(s);
     if (s.quantity == Quantity::kTransmittance) {
       sd += s2;
       sdv += s2 * s.row->value;
@@ -218,7 +197,7 @@ Baseline FitBaseline(const std::vector<Sample>& samples, int channels,
     for (int c = 0; c < s.channels; ++c) {
       const double r = m[c] - s.row->value[c];
       b.se += r * r;
-      b.cost += r * r * s.scale[c] * s.scale[c];
+      b.cost += r * r * Weight2(s)[c];
     }
   }
   return b;
@@ -238,12 +217,13 @@ SlabValidity Validate(const std::vector<Sample>& samples, int channels,
   double cost = 0.0, se = 0.0, ss = 0.0;
   int entries = 0;
   for (const Sample& s : samples) {
-    const glm::dvec3 m = SlabValue(p, s.row->wi, s.row->wo, s.quantity);
+    const glm::dvec3 m = Value(p, s.row->wi, s.row->wo, s.quantity);
+    const glm::dvec3 w2 = Weight2(s);
     for (int c = 0; c < s.channels; ++c) {
       const double r = m[c] - s.row->value[c];
       se += r * r;
       ss += s.row->value[c] * s.row->value[c];
-      cost += r * r * s.scale[c] * s.scale[c];
+      cost += r * r * w2[c];
       ++entries;
     }
   }
@@ -360,12 +340,7 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   }
 
   LeastSquaresProblem lsq;
-  const char* const* names = SlabParamNames();
-  for (int i = 0; i < SlabParams::kSize; ++i) {
-    const bool tau = i < 3;
-    lsq.specs.push_back(
-        {names[i], tau ? kTauLower : 0.0, tau ? kTauUpper : 1.0, true, !tau});
-  }
+  lsq.specs = ParameterSpecs(SlabParams());
   if (shared_tau) lsq.specs[0].name = "tau";
   if (one_channel) lsq.specs[3].name = "albedo";
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -373,31 +348,14 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
     if (shared_tau) lsq.specs[c].free = false;
     if (one_channel) lsq.specs[3 + c].free = false;
   }
-  lsq.block_sizes = {SlabParams::kSize};
+  lsq.block_sizes = {FlatSize(SlabParams())};
   lsq.sigma_known = sigma_known;
   const std::vector<Sample> samples = Samples(tables);
-  lsq.add_residuals = [&](const std::vector<double*>& blocks,
-                          ceres::LossFunction* loss, ceres::Problem* problem) {
-    for (const Sample& s : samples) {
-      problem->AddResidualBlock(s.channels == 1
-                                    ? SlabResidual<1>::Create(s, shared_tau)
-                                    : SlabResidual<3>::Create(s, shared_tau),
-                                loss, blocks[0]);
-    }
-  };
-  lsq.predict = [&](const std::vector<double>& x, std::vector<double>* model,
-                    std::vector<double>* measured,
-                    std::vector<const TableRow*>* rows) {
-    const SlabParams p = FromX(x, shared_tau, one_channel);
-    for (const Sample& s : samples) {
-      const glm::dvec3 m = SlabValue(p, s.row->wi, s.row->wo, s.quantity);
-      for (int c = 0; c < s.channels; ++c) {
-        model->push_back(m[c]);
-        measured->push_back(s.row->value[c]);
-        if (rows) rows->push_back(s.row);
-      }
-    }
-  };
+  ResidualBlocks blocks;
+  blocks.used = {0};
+  SetModelResiduals(
+      std::make_shared<const SlabEvaluator>(SlabEvaluator{samples, shared_tau}),
+      samples, blocks, &lsq);
 
   const std::vector<std::vector<double>> starts =
       Starts(samples, lsq.specs, init, channels, shared_tau,
@@ -406,6 +364,9 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
   result.params = FromX(x, shared_tau, one_channel);
+  for (const MeasurementTable& table : tables) {
+    result.report.rows += static_cast<int>(table.rows.size());
+  }
   // Entries that only follow the first channel are not parameters.
   std::vector<ParameterReport>& reported = result.report.parameters;
   reported.erase(

@@ -74,9 +74,7 @@ struct SlabValidity {
   std::vector<std::string> notes;  // the verdicts, one sentence each
 };
 
-struct SlabFitResult {
-  SlabParams params;
-  FitReport report;
+struct SlabFitResult : FitResult<SlabParams> {
   SlabValidity validity;
 };
 

@@ -18,7 +18,8 @@ struct ThreadFitOptions {
   // Starting values: they join the start search's grid, and fixed
   // parameters keep them (ThreadParams() defaults without an init).
   std::optional<ThreadParams> init;
-  // Parameter names (ThreadParamNames(), or "albedo" for all three) held
+  // Parameter names (the flat names of the thread's table: "eta", ...,
+  // "albedo_r", or "albedo" for all three) held
   // at their initial value; `free_only`, when not empty, frees only these.
   std::vector<std::string> fix;
   std::vector<std::string> free_only;
@@ -30,10 +31,7 @@ struct ThreadFitOptions {
   bool fit_scale = false;
 };
 
-struct ThreadFitResult {
-  ThreadParams params;
-  FitReport report;
-};
+using ThreadFitResult = FitResult<ThreadParams>;
 
 // Throws InputError for tables a thread cannot explain (transmittance) and
 // for unknown parameter names in fix/free_only.

@@ -28,8 +28,8 @@ class FuzzContractError : public std::logic_error {
 // Measurement tables (io/table.h ParseTable, the parser ReadTable streams
 // into): rows finite, unit directions, sigma > 0; FormatTable reads back.
 void FuzzTable(const uint8_t* data, size_t size);
-// Parameter files (io/params_json.h), both ParseParamFile and
-// ParseHolesParamFile: FormatParamFile reads back to the same text.
+// Parameter files (io/params_json.h ParseParamFile, every model): a holes
+// file's numbers are finite; FormatParamFile reads back to the same text.
 void FuzzParams(const uint8_t* data, size_t size);
 // Image-stack manifests (io/image_stack.h ReadImageStack): the manifest
 // text is written beside a few small valid images (img_000.exr,

@@ -5,10 +5,10 @@
 #include <string>
 #include <utility>
 
+#include "models/mip_levels.h"
+
 namespace clothfit {
 namespace {
-
-int LevelSize(int base, int level) { return std::max(1, base >> level); }
 
 // dst (w1 x h1, zeroed) += the ROUND_DOWN 2 x 2 sums of src (w0 x h0).
 // kFixed > 0 makes the channel count a compile-time constant (unrolled
@@ -56,12 +56,6 @@ void SumLevel(const Src* src, int w0, int h0, int channels, int w1, int h1,
 
 }  // namespace
 
-int PyramidLevels(int width, int height) {
-  int levels = 1;
-  for (int side = std::max(width, height); side > 1; side >>= 1) ++levels;
-  return levels;
-}
-
 CountPyramid::CountPyramid(int width, int height, int channels,
                            std::vector<uint8_t> base)
     : channels_(channels),
@@ -75,12 +69,12 @@ CountPyramid::CountPyramid(int width, int height, int channels,
         " values for " + std::to_string(width) + " x " +
         std::to_string(height) + " x " + std::to_string(channels));
   }
-  const int levels = PyramidLevels(width, height);
+  const int levels = MipLevelCount(width, height);
   upper_.resize(levels - 1);
   for (int level = 1; level < levels; ++level) {
-    const int w0 = LevelSize(width, level - 1),
-              h0 = LevelSize(height, level - 1);
-    const int w1 = LevelSize(width, level), h1 = LevelSize(height, level);
+    const int w0 = MipLevelSize(width, level - 1),
+              h0 = MipLevelSize(height, level - 1);
+    const int w1 = MipLevelSize(width, level), h1 = MipLevelSize(height, level);
     std::vector<int32_t>& dst = upper_[level - 1];
     dst.assign(static_cast<size_t>(w1) * h1 * channels, 0);
     if (level == 1) {
@@ -91,8 +85,10 @@ CountPyramid::CountPyramid(int width, int height, int channels,
   }
 }
 
-int CountPyramid::width(int level) const { return LevelSize(width_, level); }
-int CountPyramid::height(int level) const { return LevelSize(height_, level); }
+int CountPyramid::width(int level) const { return MipLevelSize(width_, level); }
+int CountPyramid::height(int level) const {
+  return MipLevelSize(height_, level);
+}
 
 void CountPyramid::Counts(int level, int x, int y, double* out) const {
   const size_t index = (static_cast<size_t>(y) * width(level) + x) * channels_;

@@ -3,7 +3,8 @@
 // blocks of level l, down to 1 x 1.
 //
 // Sizes that are not powers of two follow OpenEXR's MIPMAP_LEVELS /
-// ROUND_DOWN: level l is max(1, W >> l) x max(1, H >> l); the last column
+// ROUND_DOWN (models/mip_levels.h): level l is max(1, W >> l) x
+// max(1, H >> l); the last column
 // (row) of a level also sums what is left over when the level below has an
 // odd width (height). So texel x of level l covers base columns
 // [x 2^l, (x + 1) 2^l), except the last one, which reaches W; T (the
@@ -49,8 +50,5 @@ class CountPyramid {
   std::vector<uint8_t> base_;
   std::vector<std::vector<int32_t>> upper_;  // levels 1, 2, ...
 };
-
-// Number of levels of a width x height base (down to 1 x 1).
-int PyramidLevels(int width, int height);
 
 }  // namespace clothfit

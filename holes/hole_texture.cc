@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "io/input_error.h"
 
 namespace clothfit {
 namespace {
@@ -166,16 +170,6 @@ HoleDistanceTexel DistanceTexelAt(const CountPyramid& distances, int level,
   return d;
 }
 
-const char* HoleMethodName(HoleMethod method) {
-  return method == HoleMethod::kExtension ? "extension" : "alg31";
-}
-
-std::optional<HoleMethod> ParseHoleMethod(const std::string& text) {
-  if (text == "alg31") return HoleMethod::kAlgorithm31;
-  if (text == "extension") return HoleMethod::kExtension;
-  return std::nullopt;
-}
-
 HoleRatios EvaluateTexel(const HoleTexture& texture, HoleMethod method,
                          int level, int x, int y, const glm::dvec2& r) {
   const HoleTexel t = HoleTexelAt(texture.counts, level, x, y);
@@ -199,6 +193,46 @@ LevelTexels GatherLevel(const HoleTexture& texture, int level) {
   out.area = static_cast<double>(counts.width(0)) *
              static_cast<double>(counts.height(0));
   return out;
+}
+
+HolesTile HolesTileOf(const HoleTexture& texture, HoleMethod method,
+                      int level) {
+  const int top = texture.counts.levels() - 1;
+  if (level < 0) level = top;
+  if (level > top) {
+    throw InputError("level " + std::to_string(level) +
+                     " is out of range: the mask's pyramid has levels 0.." +
+                     std::to_string(top));
+  }
+  if (method == HoleMethod::kExtension && texture.distances.empty()) {
+    throw InputError("the extension needs the mask's run counts");
+  }
+  HolesTile tile;
+  tile.method = method;
+  tile.texels = GatherLevel(texture, level);
+  return tile;
+}
+
+HolesModel LoadHolesModel(const ParamFile& file, const std::string& path,
+                          const std::string& mask) {
+  HolesModel model = ModelOf<HolesModel>(file, path);
+  std::string mask_path = mask;
+  if (mask_path.empty() && !file.holes.path.empty()) {
+    mask_path =
+        (std::filesystem::path(path).parent_path() / file.holes.path).string();
+  }
+  if (mask_path.empty()) {
+    throw InputError(path +
+                     ": a holes model needs its mask: the file names "
+                     "none (give --mask M.png)");
+  }
+  MaskReadOptions mask_options;
+  mask_options.threshold = file.holes.threshold;
+  const HoleMethod method = file.holes.method.value_or(HoleMethod::kExtension);
+  const HoleTexture texture = AnalyzeMask(ReadMask(mask_path, mask_options),
+                                          method == HoleMethod::kExtension);
+  model.tile = std::make_shared<const HolesTile>(HolesTileOf(texture, method));
+  return model;
 }
 
 HoleRatios EvaluateTile(const HoleTexture& texture, HoleMethod method,

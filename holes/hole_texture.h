@@ -12,8 +12,8 @@
 
 #include "holes/count_pyramid.h"
 #include "io/mask_io.h"
-#include "models/holes.h"
-#include "models/holes_distance.h"
+#include "io/params_json.h"
+#include "models/holes_tile.h"
 
 namespace clothfit {
 
@@ -38,12 +38,13 @@ HoleTexel HoleTexelAt(const CountPyramid& counts, int level, int x, int y);
 HoleDistanceTexel DistanceTexelAt(const CountPyramid& distances, int level,
                                   int x, int y);
 
-enum class HoleMethod {
-  kAlgorithm31,  // the thesis, |rx|, |ry| clamped to 1
-  kExtension,    // + the run counts beyond one texel (needs distances)
-};
-const char* HoleMethodName(HoleMethod method);  // "alg31" | "extension"
-std::optional<HoleMethod> ParseHoleMethod(const std::string& text);
+// The model of a holes parameter file read from `path` (io/params_json.h):
+// its mask - `mask` when not empty, else the file's "mask" relative to the
+// file's folder - read with the file's threshold and analysed, evaluated
+// at the top level with the file's method (the extension by default).
+// Throws InputError naming the file when there is no mask to read.
+HolesModel LoadHolesModel(const ParamFile& file, const std::string& path,
+                          const std::string& mask = "");
 
 // The ratios of texel (x, y) of `level` for the view offset r (texels,
 // models/holes.h ViewOffset). The extension needs texture.distances
@@ -51,41 +52,20 @@ std::optional<HoleMethod> ParseHoleMethod(const std::string& text);
 HoleRatios EvaluateTexel(const HoleTexture& texture, HoleMethod method,
                          int level, int x, int y, const glm::dvec2& r);
 
-// The texels of one level, gathered for repeated whole-tile evaluation
-// (distances empty unless the texture has them).
-struct LevelTexels {
-  std::vector<HoleTexel> counts;
-  std::vector<HoleDistanceTexel> distances;
-  double area = 0.0;  // base texels of the tile
-};
+// The texels of one level (models/holes_tile.h; distances when the
+// texture has them).
 LevelTexels GatherLevel(const HoleTexture& texture, int level);
 
-// The whole tile: the area-weighted mean of the level's texels, sum_i T_i
-// ratios_i / area. Algorithm 3.1 gives the same at every level (it is
-// linear in the counts); the extension is exact on rectangular holes at
-// every level and depends on the level elsewhere (docs/holes.md).
-// Templated for the fit (fitting/holes_fit.h).
-template <typename T>
-HoleRatiosT<T> TileRatios(const LevelTexels& level, HoleMethod method,
-                          const Vec2<T>& r) {
-  HoleRatiosT<T> sum;
-  const bool extension =
-      method == HoleMethod::kExtension && !level.distances.empty();
-  for (size_t i = 0; i < level.counts.size(); ++i) {
-    const HoleTexel& t = level.counts[i];
-    const HoleRatiosT<T> ratios = extension
-                                      ? ExtendedRatios(t, level.distances[i], r)
-                                      : Algorithm31(t, r);
-    sum.opaque += T(t.texels) * ratios.opaque;
-    sum.occluded += T(t.texels) * ratios.occluded;
-    sum.transparent += T(t.texels) * ratios.transparent;
-  }
-  const T inv_area = T(1.0 / level.area);
-  sum.opaque *= inv_area;
-  sum.occluded *= inv_area;
-  sum.transparent *= inv_area;
-  return sum;
-}
+// The tile a fit or an evaluation averages over: level `level` (kTopLevel:
+// the 1 x 1 level) with `method`. Algorithm 3.1 gives the same at every
+// level; the extension is exact on rectangular holes at every level, and
+// on irregular masks its error depends on the level (docs/holes.md);
+// lower levels cost more per evaluation. Throws InputError for a level out
+// of range and for the extension without the texture's distances.
+inline constexpr int kTopLevel = -1;
+HolesTile HolesTileOf(const HoleTexture& texture,
+                      HoleMethod method = HoleMethod::kExtension,
+                      int level = kTopLevel);
 
 // TileRatios of one level of the texture (GatherLevel, then TileRatios);
 // the extension needs the distances (std::invalid_argument otherwise).

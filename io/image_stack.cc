@@ -442,6 +442,7 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
   Manifest manifest =
       ParseManifest(ReadFileToString(manifest_path), manifest_path);
   MeasurementTable table = std::move(manifest.table);
+  table.source = manifest_path;
   table.has_texels = true;
   table.has_sigma = false;
   table.has_weight = false;

@@ -30,6 +30,7 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
+#include "models/mip_levels.h"
 
 namespace clothfit {
 namespace {
@@ -51,15 +52,6 @@ std::atomic<unsigned> temp_counter{0};
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
-}
-
-int LevelSize(int base, int level) { return std::max(1, base >> level); }
-
-// Number of MIPMAP_LEVELS / ROUND_DOWN levels of a width x height base.
-int LevelCount(int width, int height) {
-  int levels = 1;
-  for (int side = std::max(width, height); side > 1; side >>= 1) ++levels;
-  return levels;
 }
 
 std::string BaseName(const std::string& path) {
@@ -90,7 +82,7 @@ void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
                    std::to_string(height));
   }
   // Either the full chain down to 1 x 1 or the base level alone.
-  const int full_levels = LevelCount(width, height);
+  const int full_levels = MipLevelCount(width, height);
   const int expected_levels = mipmap.levels.size() == 1 ? 1 : full_levels;
   if (static_cast<int>(mipmap.levels.size()) != expected_levels) {
     Fail(path, "a " + std::to_string(width) + " x " + std::to_string(height) +
@@ -100,8 +92,8 @@ void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
   }
   for (int level = 0; level < expected_levels; ++level) {
     const ParamImage& image = mipmap.levels[level];
-    const int level_width = LevelSize(width, level);
-    const int level_height = LevelSize(height, level);
+    const int level_width = MipLevelSize(width, level);
+    const int level_height = MipLevelSize(height, level);
     const std::string label = "level " + std::to_string(level);
     if (image.width != level_width || image.height != level_height) {
       Fail(path, label + " is " + std::to_string(image.width) + " x " +
@@ -171,7 +163,7 @@ void WriteExr(const ParamMipmap& mipmap, const std::string& path) {
   try {
     Imf::Header header(width, height);
     const bool mipmapped =
-        static_cast<int>(mipmap.levels.size()) == LevelCount(width, height);
+        static_cast<int>(mipmap.levels.size()) == MipLevelCount(width, height);
     header.setTileDescription(Imf::TileDescription(
         kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
         Imf::ROUND_DOWN));
@@ -246,7 +238,7 @@ Index ReadIndex(const std::string& name) {
     Fail(name, "bad size " + std::to_string(result.width) + " x " +
                    std::to_string(result.height));
   }
-  const int full_levels = LevelCount(result.width, result.height);
+  const int full_levels = MipLevelCount(result.width, result.height);
   if (result.levels != 1 && result.levels != full_levels) {
     Fail(name, "key 'levels': a " + std::to_string(result.width) + " x " +
                    std::to_string(result.height) + " base has 1 or " +
@@ -277,8 +269,8 @@ Index ReadIndex(const std::string& name) {
   }
   int64_t floats = 0;
   for (int level = 0; level < result.levels; ++level) {
-    floats += static_cast<int64_t>(LevelSize(result.width, level)) *
-              LevelSize(result.height, level);
+    floats += static_cast<int64_t>(MipLevelSize(result.width, level)) *
+              MipLevelSize(result.height, level);
   }
   if (floats * static_cast<int64_t>(result.channels.size()) > kMaxFloats) {
     Fail(name, "too large: " + std::to_string(result.channels.size()) +
@@ -325,8 +317,8 @@ void ReadExr(const std::string& path, const Index& index, ParamMipmap* mipmap) {
     ParamImage& image = mipmap->levels[level];
     image.width = in.levelWidth(level);
     image.height = in.levelHeight(level);
-    if (image.width != LevelSize(index.width, level) ||
-        image.height != LevelSize(index.height, level)) {
+    if (image.width != MipLevelSize(index.width, level) ||
+        image.height != MipLevelSize(index.height, level)) {
       Fail(path, "level " + std::to_string(level) + " has an unexpected size");
     }
     image.data.assign(

@@ -1,9 +1,11 @@
 #include "io/params_json.h"
 
 #include <cmath>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -13,9 +15,6 @@
 
 namespace clothfit {
 namespace {
-
-// How models/lafortune.h interpolates the lookup table between views.
-constexpr char kLutInterpolation[] = "shepard, angular distance power 3";
 
 // Ordered, so that a "fit" object keeps its key order through a rewrite.
 using json = nlohmann::ordered_json;
@@ -108,15 +107,35 @@ class ObjectReader {
   std::set<std::string> used_;
 };
 
-// The thread-parameter keys, shared by "thread" files and cloth threads.
-ThreadParams ReadThreadKeys(ObjectReader& r) {
-  ThreadParams p;
-  p.eta = r.Number("eta");
-  p.kd = r.Number("kd");
-  p.gamma_s_deg = r.Number("gamma_s_deg");
-  p.gamma_v_deg = r.Number("gamma_v_deg");
-  p.albedo = r.Rgb("albedo");
+// The keys of a parameter table (models/params.h): a number for a scalar
+// entry, a number or 3 numbers for an rgb entry. Keys in `optional` may be
+// absent (the entry keeps its default).
+template <typename P>
+P ReadParamKeys(ObjectReader& r,
+                std::initializer_list<const char*> optional = {}) {
+  P p;
+  VisitParams(p, [&](const ParamInfo& info, auto& field) {
+    for (const char* name : optional) {
+      if (std::string(name) == info.name && !r.Has(name)) return;
+    }
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, double>) {
+      field = r.Number(info.name);
+    } else {
+      field = r.Rgb(info.name);
+    }
+  });
   return p;
+}
+
+template <typename P>
+void WriteParamKeys(const P& p, json* j) {
+  VisitParamsConst(p, [&](const ParamInfo& info, const auto& field) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, double>) {
+      (*j)[info.name] = field;
+    } else {
+      (*j)[info.name] = {field.x, field.y, field.z};
+    }
+  });
 }
 
 // Range errors name the key by its path: "threads[0].kd: must be ..." ->
@@ -164,17 +183,9 @@ ClothThread ReadClothThread(const json& object, const std::string& file,
     if (!e.empty()) FailValidation(file, path + "." + e);
     th.offsets_deg = SampleTangentCurve(th.curve);
   }
-  th.params = ReadThreadKeys(r);
+  th.params = ReadParamKeys<ThreadParams>(r);
   r.Finish();
   return th;
-}
-
-void WriteThreadKeys(const ThreadParams& p, json* j) {
-  (*j)["eta"] = p.eta;
-  (*j)["kd"] = p.kd;
-  (*j)["gamma_s_deg"] = p.gamma_s_deg;
-  (*j)["gamma_v_deg"] = p.gamma_v_deg;
-  (*j)["albedo"] = {p.albedo.x, p.albedo.y, p.albedo.z};
 }
 
 // Like json::dump(2), but arrays of scalars stay on one line.
@@ -228,11 +239,11 @@ json ParseJson(const std::string& text, const std::string& name) {
 
 }  // namespace
 
-const char* ModelName(const ModelParams& params) {
-  if (std::holds_alternative<ThreadParams>(params)) return "thread";
-  if (std::holds_alternative<LafortuneModel>(params)) return "lafortune";
-  if (std::holds_alternative<SlabParams>(params)) return "slab";
-  return "cloth";
+std::optional<HoleMethod> ParseHoleMethod(const std::string& text) {
+  for (HoleMethod m : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
+    if (text == HoleMethodName(m)) return m;
+  }
+  return std::nullopt;
 }
 
 ParamFile ParseParamFile(const std::string& text, const std::string& name) {
@@ -241,8 +252,8 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
   ParamFile out;
   const std::string model = r.String("model");
   if (model == "thread") {
-    ThreadParams p = ReadThreadKeys(r);
-    const std::string e = ValidateThreadParams(p);
+    const ThreadParams p = ReadParamKeys<ThreadParams>(r);
+    const std::string e = ValidateParams(p);
     if (!e.empty()) FailValidation(name, e);
     out.params = p;
   } else if (model == "cloth") {
@@ -258,18 +269,13 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     out.params = c;
   } else if (model == "lafortune") {
     LafortuneModel m;
-    m.params.diffuse = r.Rgb("diffuse");
+    m.params.diffuse = r.Rgb(kLafortuneDiffuse.name);
     const json& lobes = r.Get("lobes");
     if (!lobes.is_array()) r.Fail("lobes", "must be an array of objects");
     for (size_t k = 0; k < lobes.size(); ++k) {
       ObjectReader lr(lobes[k], name, "lobes[" + std::to_string(k) + "]");
-      LafortuneLobe lobe;
-      lobe.cx = lr.Rgb("Cx");
-      lobe.cy = lr.Rgb("Cy");
-      lobe.cz = lr.Rgb("Cz");
-      lobe.n = lr.Rgb("N");
+      m.params.lobes.push_back(ReadParamKeys<LafortuneLobe>(lr));
       lr.Finish();
-      m.params.lobes.push_back(lobe);
     }
     if (r.Has("normal")) {  // the texel's average normal (lobes' frame)
       const std::vector<double> n = r.NumberArray("normal");
@@ -322,20 +328,31 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     if (!e.empty()) FailValidation(name, e);
     out.params = m;
   } else if (model == "slab") {
-    SlabParams p;
-    p.tau = r.Rgb("tau");
-    p.albedo = r.Rgb("albedo");
-    const std::string e = ValidateSlabParams(p);
+    const SlabParams p = ReadParamKeys<SlabParams>(r);
+    const std::string e = ValidateParams(p);
     if (!e.empty()) FailValidation(name, e);
     out.params = p;
+  } else if (model == "holes") {
+    HolesModel h;
+    h.params = ReadParamKeys<HolesParams>(r, {kHolesWallColor.name});
+    const std::string e = ValidateParams(h.params);
+    if (!e.empty()) FailValidation(name, e);
+    if (r.Has("mask")) out.holes.path = r.String("mask");
+    out.holes.threshold = r.NumberOr("threshold", 0.5);
+    if (!(out.holes.threshold > 0.0 && out.holes.threshold <= 1.0)) {
+      r.Fail("threshold", "must be in (0, 1]");
+    }
+    if (r.Has("method")) {
+      out.holes.method = ParseHoleMethod(r.String("method"));
+      if (!out.holes.method) {
+        r.Fail("method", "must be \"alg31\" or \"extension\"");
+      }
+    }
+    out.params = h;
   } else {
-    r.Fail("model",
-           model == "holes"
-               ? "a holes model needs its mask: use clothfit holes eval "
-                 "--params"
-               : "unknown model \"" + model +
-                     "\" (expected \"thread\", \"cloth\", "
-                     "\"lafortune\" or \"slab\")");
+    r.Fail("model", "unknown model \"" + model +
+                        "\" (expected \"thread\", \"cloth\", "
+                        "\"lafortune\", \"slab\" or \"holes\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -351,16 +368,13 @@ std::string FormatParamFile(const ParamFile& file) {
   j["model"] = ModelName(file.params);
   auto rgb = [](const glm::dvec3& v) { return json{v.x, v.y, v.z}; };
   if (const auto* p = std::get_if<ThreadParams>(&file.params)) {
-    WriteThreadKeys(*p, &j);
+    WriteParamKeys(*p, &j);
   } else if (const auto* m = std::get_if<LafortuneModel>(&file.params)) {
-    j["diffuse"] = rgb(m->params.diffuse);
+    j[kLafortuneDiffuse.name] = rgb(m->params.diffuse);
     json lobes = json::array();
     for (const LafortuneLobe& lobe : m->params.lobes) {
       json l;
-      l["Cx"] = rgb(lobe.cx);
-      l["Cy"] = rgb(lobe.cy);
-      l["Cz"] = rgb(lobe.cz);
-      l["N"] = rgb(lobe.n);
+      WriteParamKeys(lobe, &l);
       lobes.push_back(l);
     }
     j["lobes"] = lobes;
@@ -377,8 +391,13 @@ std::string FormatParamFile(const ParamFile& file) {
                   {"alpha", m->lut.alpha}};
     }
   } else if (const auto* p = std::get_if<SlabParams>(&file.params)) {
-    j["tau"] = SlabTauIsScalar(*p) ? json(p->tau.x) : rgb(p->tau);
-    j["albedo"] = rgb(p->albedo);
+    WriteParamKeys(*p, &j);
+    if (SlabTauIsScalar(*p)) j[kSlabTau.name] = p->tau.x;
+  } else if (const auto* h = std::get_if<HolesModel>(&file.params)) {
+    WriteParamKeys(h->params, &j);
+    if (!file.holes.path.empty()) j["mask"] = file.holes.path;
+    j["threshold"] = file.holes.threshold;
+    if (file.holes.method) j["method"] = HoleMethodName(*file.holes.method);
   } else {
     const ClothParams& c = std::get<ClothParams>(file.params);
     json threads = json::array();
@@ -393,7 +412,7 @@ std::string FormatParamFile(const ParamFile& file) {
       } else {
         t["offsets_deg"] = th.offsets_deg;
       }
-      WriteThreadKeys(th.params, &t);
+      WriteParamKeys(th.params, &t);
       threads.push_back(t);
     }
     j["threads"] = threads;
@@ -406,54 +425,6 @@ std::string FormatParamFile(const ParamFile& file) {
 
 void WriteParamFile(const ParamFile& file, const std::string& path) {
   WriteFileAtomically(path, FormatParamFile(file));
-}
-
-HolesParamFile ParseHolesParamFile(const std::string& text,
-                                   const std::string& name) {
-  const json root = ParseJson(text, name);
-  ObjectReader r(root, name, "");
-  const std::string model = r.String("model");
-  if (model != "holes") {
-    r.Fail("model", "expected \"holes\", got \"" + model + "\"");
-  }
-  HolesParamFile out;
-  out.params.thickness_texels = r.Number("thickness_texels");
-  if (r.Has("wall_color")) out.params.wall_color = r.Rgb("wall_color");
-  const std::string e = ValidateHolesParams(out.params);
-  if (!e.empty()) FailValidation(name, e);
-  if (r.Has("mask")) out.mask = r.String("mask");
-  out.threshold = r.NumberOr("threshold", 0.5);
-  if (!(out.threshold > 0.0 && out.threshold <= 1.0)) {
-    r.Fail("threshold", "must be in (0, 1]");
-  }
-  if (r.Has("method")) {
-    out.method = r.String("method");
-    if (out.method != "alg31" && out.method != "extension") {
-      r.Fail("method", "must be \"alg31\" or \"extension\"");
-    }
-  }
-  if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
-  r.Finish();
-  return out;
-}
-
-HolesParamFile ReadHolesParamFile(const std::string& path) {
-  return ParseHolesParamFile(ReadFileToString(path), path);
-}
-
-void WriteHolesParamFile(const HolesParamFile& file, const std::string& path) {
-  json j;
-  j["model"] = "holes";
-  j["thickness_texels"] = file.params.thickness_texels;
-  const glm::dvec3& c = file.params.wall_color;
-  j["wall_color"] = {c.x, c.y, c.z};
-  if (!file.mask.empty()) j["mask"] = file.mask;
-  j["threshold"] = file.threshold;
-  if (!file.method.empty()) j["method"] = file.method;
-  if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);
-  std::string out;
-  AppendPretty(j, 0, &out);
-  WriteFileAtomically(path, out + "\n");
 }
 
 }  // namespace clothfit

@@ -5,7 +5,13 @@
 //   {"model": "cloth", "threads": [{"direction": "u", "coverage": 0.33,
 //    "offsets_deg": [-25, 25], "eta": 1.46, ...}, ...]}
 //   {"model": "slab", "tau": 0.5, "albedo": [0.9, 0.8, 0.7]}
+//   {"model": "holes", "thickness_texels": 2.0, "wall_color": [0, 0, 0],
+//    "mask": "net.png", "threshold": 0.5, "method": "extension"}
 //
+// The keys, units and ranges of each model's parameters come from its
+// parameter table (models/params.h); an rgb entry is an array of 3 numbers
+// or one number for all three. A holes file names its mask ("mask",
+// "threshold" and "method" record how a fit saw it; informational).
 // A cloth thread gives its tangent samples either explicitly ("offsets_deg")
 // or as a tangent curve ("curve_offsets_deg", "curve_lengths", "samples").
 // Unknown keys, missing keys, wrong types and out-of-range values are errors
@@ -13,22 +19,36 @@
 // A "fit" object (written by `clothfit fit`) is kept verbatim as text.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 
+#include "io/input_error.h"
 #include "models/evaluate.h"
-#include "models/holes.h"
 
 namespace clothfit {
 
+// Where a holes file's mask is, and how it was thresholded (informational:
+// a command reads the mask itself, holes/hole_texture.h).
+struct HolesMaskSource {
+  std::string path;                  // "" when absent
+  double threshold = 0.5;            // in (0, 1]
+  std::optional<HoleMethod> method;  // the method a fit used
+};
+
 struct ParamFile {
+  ParamFile() = default;
+  ParamFile(ModelParams model, std::string fit = "")
+      : params(std::move(model)), fit_json(std::move(fit)) {}
+
   ModelParams params;
   // The "fit" object as serialised JSON text, empty when absent.
   std::string fit_json;
+  // A holes model's mask ("mask", "threshold", "method"); its tile is
+  // null until the mask is analysed.
+  HolesMaskSource holes;
 };
-
-// "thread" | "cloth" | "lafortune" | "slab".
-const char* ModelName(const ModelParams& params);
 
 // Throws InputError naming `name` and the key on any problem.
 ParamFile ParseParamFile(const std::string& text, const std::string& name);
@@ -39,24 +59,16 @@ std::string FormatParamFile(const ParamFile& file);
 // Atomic write (io/atomic_file.h). Throws InputError when it cannot write.
 void WriteParamFile(const ParamFile& file, const std::string& path);
 
-// A holes parameter file (issue 6), read and written by `clothfit holes`
-// and `clothfit fit --model holes` (the model needs a mask, so it is not a
-// ModelParams):
-//   {"model": "holes", "thickness_texels": 2.0, "wall_color": [0, 0, 0],
-//    "mask": "net.png", "threshold": 0.5, "method": "extension", "fit": {..}}
-// "mask", "threshold" and "method" record how the fit saw the mask
-// (optional; informational).
-struct HolesParamFile {
-  HolesParams params;
-  std::string mask;        // "" when absent
-  double threshold = 0.5;  // mask threshold
-  std::string method;      // "alg31" | "extension" | ""
-  std::string fit_json;    // the "fit" object as text, empty when absent
-};
+// The parameters of `file` as model P (ThreadParams, ...); throws
+// InputError "NAME: expected a P parameter file, got M" for another model.
+template <typename P>
+const P& ModelOf(const ParamFile& file, const std::string& name) {
+  if (const P* p = std::get_if<P>(&file.params)) return *p;
+  throw InputError(name + ": expected a " + kModelInfo<P>.name +
+                   " parameter file, got " + ModelName(file.params));
+}
 
-HolesParamFile ParseHolesParamFile(const std::string& text,
-                                   const std::string& name);
-HolesParamFile ReadHolesParamFile(const std::string& path);
-void WriteHolesParamFile(const HolesParamFile& file, const std::string& path);
+// "alg31" | "extension"; nullopt for anything else.
+std::optional<HoleMethod> ParseHoleMethod(const std::string& text);
 
 }  // namespace clothfit

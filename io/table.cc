@@ -529,6 +529,7 @@ ReadTableResult TableParser::Finish() {
     }
     Fail(header_line, 0, "table has no rows (only a header)");
   }
+  result_.table.source = name_;
   return std::move(result_);
 }
 

@@ -54,6 +54,8 @@ inline bool IsReflectionRow(const TableRow& row) {
 }
 
 struct MeasurementTable {
+  // The file it was read from, for messages ("" when made in memory).
+  std::string source;
   // Metadata lines in file order, keys lower-cased; unknown keys are kept.
   std::vector<std::pair<std::string, std::string>> metadata;
   Quantity quantity = Quantity::kBrdf;

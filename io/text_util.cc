@@ -82,9 +82,9 @@ std::vector<std::string_view> SplitFields(std::string_view line) {
   }
 }
 
-std::string FormatNumber(double value) {
+std::string FormatNumber(double value, int significant) {
   char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  std::snprintf(buffer, sizeof(buffer), "%.*g", significant, value);
   return buffer;
 }
 

@@ -43,8 +43,10 @@ bool EndsWith(std::string_view text, std::string_view suffix);
 // Splits `line` at every comma (no quoting); always at least one field.
 std::vector<std::string_view> SplitFields(std::string_view line);
 
-// `value` printed with "%.17g", enough digits to round-trip a double.
-std::string FormatNumber(double value);
+// `value` printed with "%.*g" at `significant` digits: 17 (the default)
+// round-trips a double; fewer for labels ("%.3g"). The one number
+// formatter of clothfit's files, messages and charts.
+std::string FormatNumber(double value, int significant = 17);
 
 // `text` with newlines replaced by spaces, so it fits on one '#' line.
 std::string OneLine(std::string_view text);

@@ -1,9 +1,16 @@
-// Model outputs as the quantities that tables hold, one place for the
-// conversions f <-> rho = f |wi.z| (SPEC §1). Templated on the scalar type.
+// Every model behind one interface: the variant ModelParams of their
+// parameter sets, and their values as the quantities tables hold. The one
+// place that converts between the BSDF f and rho = f |wi.z| (SPEC §1):
+// each model evaluates the quantity its paper defines (NativeValue and
+// kModelInfo in its header), and Value converts. Templated on the scalar
+// type, so that a fit evaluates Jets through the same code.
 #pragma once
 
+#include <cmath>
+#include <string>
 #include <variant>
 
+#include "models/holes_tile.h"
 #include "models/lafortune.h"
 #include "models/math.h"
 #include "models/microcylinder_cloth.h"
@@ -13,65 +20,94 @@
 
 namespace clothfit {
 
-using ModelParams =
-    std::variant<ThreadParams, ClothParams, LafortuneModel, SlabParams>;
+using ModelParams = std::variant<ThreadParams, ClothParams, LafortuneModel,
+                                 SlabParams, HolesModel>;
 
-// Whether a model can predict a quantity (only the slab predicts
-// transmittance).
+// Smallest wi.z used to turn rho into the BRDF f = rho / wi.z, so that f
+// stays finite at exactly grazing incidence.
+inline constexpr double kMinCosIncidence = 1e-7;
+
+// A value of quantity `from` (kBrdf or kCosineWeighted) as quantity `to`:
+// rho = f |wi.z|, f = rho / max(wi.z, kMinCosIncidence).
+template <typename T, typename G>
+Vec3<T> ConvertQuantity(const Vec3<T>& value, Quantity from, Quantity to,
+                        const G& wi_z) {
+  using std::abs;
+  if (from == to) return value;
+  if (to == Quantity::kCosineWeighted) return value * T(abs(wi_z));
+  return value / T(Max(wi_z, G(kMinCosIncidence)));
+}
+
+// The factor |wi.z| that turns a value of quantity `from` into rho (1 for
+// rho itself): ConvertQuantity(v, from, kCosineWeighted, wi_z) = k v, and
+// the factor of its sigma.
+inline double CosineWeightedFactor(Quantity from, double wi_z) {
+  return from == Quantity::kCosineWeighted ? 1.0 : std::abs(wi_z);
+}
+
+// Whether parameters of type P predict quantity q.
+template <typename P>
+bool Predicts(Quantity q) {
+  constexpr ModelInfo info = kModelInfo<P>;
+  if (q == Quantity::kTransmittance) return info.transmittance;
+  return info.native != Quantity::kTransmittance;
+}
+
+// The value of parameters p (any model's, any scalar type) at (wi, wo) as
+// quantity q; zero where the model does not predict q (Predicts).
+template <typename P, typename G>
+auto Value(const P& p, const Vec3<G>& wi, const Vec3<G>& wo, Quantity q) {
+  constexpr ModelInfo info = kModelInfo<P>;
+  static_assert(info.name != nullptr, "P is not a model's parameter type");
+  using V = decltype(NativeValue(p, wi, wo));
+  using T = typename V::value_type;
+  if (!Predicts<P>(q)) return V(T(0.0));
+  if constexpr (info.transmittance) {
+    if (q == Quantity::kTransmittance) return V(Transmittance(p, wo));
+  }
+  return ConvertQuantity(NativeValue(p, wi, wo), info.native, q, wi.z);
+}
+
 inline bool ModelPredicts(const ModelParams& params, Quantity q) {
-  return q == Quantity::kBrdf || q == Quantity::kCosineWeighted ||
-         std::holds_alternative<SlabParams>(params);
+  return std::visit(
+      [&](const auto& p) { return Predicts<std::decay_t<decltype(p)>>(q); },
+      params);
 }
 
-// A thread alone, in the thread frame (tangent +x, normal +z).
-template <typename T>
-Vec3<T> ThreadValue(const ThreadParamsT<T>& p, const Vec3<T>& wi,
-                    const Vec3<T>& wo, Quantity q) {
-  using std::abs;
-  const Vec3<T> f = ThreadBsdfLocal(p, wi, wo);
-  return q == Quantity::kCosineWeighted ? f * abs(wi.z) : f;
+// "thread" | "cloth" | "lafortune" | "slab" | "holes".
+inline const char* ModelName(const ModelParams& params) {
+  return std::visit(
+      [](const auto& p) { return kModelInfo<std::decay_t<decltype(p)>>.name; },
+      params);
 }
 
-// rho = f wi.z as quantity q: rho itself, or f = rho / wi.z (with wi.z
-// floored at kMinCosIncidence so that f stays finite at grazing incidence).
-template <typename T, typename G>
-Vec3<T> FromCosineWeighted(const Vec3<T>& rho, const G& wi_z, Quantity q) {
-  if (q == Quantity::kCosineWeighted) return rho;
-  return rho / T(Max(wi_z, G(kMinCosIncidence)));
-}
-
-// A cloth patch in the surface frame; reflection only.
-template <typename T>
-Vec3<T> ClothValue(const ClothParamsT<T>& c, const Vec3<T>& wi,
-                   const Vec3<T>& wo, Quantity q) {
-  return FromCosineWeighted(ClothRho(c, wi, wo), wi.z, q);
-}
-
-// A slab in the surface frame: f_r or f_t (SPEC §3.4) as quantity q (rho =
-// f |wi.z|), or the direct transmittance D(|wo.z|) for kTransmittance.
-template <typename T, typename G>
-Vec3<T> SlabValue(const SlabParamsT<T>& p, const Vec3<G>& wi, const Vec3<G>& wo,
-                  Quantity q) {
-  using std::abs;
-  if (q == Quantity::kTransmittance) return SlabDirectTransmittance(p, wo);
-  const Vec3<T> f = SlabBsdf(p, wi, wo);
-  return q == Quantity::kCosineWeighted ? f * T(abs(wi.z)) : f;
-}
-
-// Double-precision evaluation of any parameter set. Requires
-// ModelPredicts(params, q).
+// Double-precision evaluation of any parameter set; zero where the model
+// does not predict q.
 inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
                            const glm::dvec3& wo, Quantity q) {
+  return std::visit(
+      [&](const auto& p) -> glm::dvec3 { return Value(p, wi, wo, q); }, params);
+}
+
+// The ranges of every model's parameter table (models/params.h) and the
+// model's own rules: "" when valid, else a message naming the entry.
+inline std::string ValidateModel(const ModelParams& params) {
   if (const auto* p = std::get_if<ThreadParams>(&params)) {
-    return ThreadValue(*p, wi, wo, q);
+    return ValidateParams(*p);
+  }
+  if (const auto* c = std::get_if<ClothParams>(&params)) {
+    return ValidateClothParams(*c);
   }
   if (const auto* m = std::get_if<LafortuneModel>(&params)) {
-    return FromCosineWeighted(LafortuneRho(*m, wi, wo), wi.z, q);
+    const std::string e = ValidateLafortuneParams(m->params);
+    return e.empty() ? ValidateViewTable(m->lut) : e;
   }
   if (const auto* s = std::get_if<SlabParams>(&params)) {
-    return SlabValue(*s, wi, wo, q);
+    return ValidateParams(*s);
   }
-  return ClothValue(std::get<ClothParams>(params), wi, wo, q);
+  const HolesModel& h = std::get<HolesModel>(params);
+  if (!h.tile) return "a holes model needs its mask";
+  return ValidateParams(h.params);
 }
 
 }  // namespace clothfit

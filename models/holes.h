@@ -34,10 +34,9 @@
 #include <cmath>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
-#include <sstream>
-#include <string>
 
 #include "models/math.h"
+#include "models/params.h"
 
 namespace clothfit {
 
@@ -139,69 +138,52 @@ HoleRatiosT<T> Algorithm31(const HoleTexel& t, const Vec2<T>& r) {
   return out;
 }
 
-// Appearance parameters of a holed layer seen in transmission.
+// The parameter table of a holed layer seen in transmission
+// (models/params.h). A fit searches the thickness in [1e-3, 1e3].
+inline constexpr ParamInfo kHolesThickness = {
+    "thickness_texels",
+    "texel widths",
+    "height h of the opaque columns",
+    {0.0, 1e4, true, false},
+    1e-3,
+    1e3,
+    false,
+    {1.0},
+    "David-Babin 2022, §3.3 and Algorithm 3.1 (h; Fig. 4.4 uses 0.1-1)",
+    1};
+// Eq. 3.4.3's c_2 for a white background (c_alpha = 1) behind tops that
+// pass no light (c_1 = 0); 0: walls block light.
+inline constexpr ParamInfo kHolesWallColor = {
+    "wall_color",
+    "unitless",
+    "fraction of the light meeting a hole's wall that reaches the sensor",
+    {0.0, 1.0},
+    0.0,
+    1.0,
+    true,
+    {0.0, 0.0, 0.0},
+    "David-Babin 2022, eq. 3.4.3 (c_2)",
+    3};
+
 template <typename T>
 struct HolesParamsT {
-  // Height of the opaque columns, in texel widths; (0, 1e4]. David-Babin
-  // 2022 §3.3 and Algorithm 3.1 ("h", "thickness"; Fig. 4.4 uses 0.1-1).
-  T thickness_texels = T(1.0);
-  // Fraction of the light that meets a hole's wall and still reaches the
-  // sensor, per channel (r, g, b); [0, 1]; default 0 (walls block light).
-  // Eq. 3.4.3 ("c_2") for a white background (c_alpha = 1) behind tops
-  // that pass no light (c_1 = 0).
-  Vec3<T> wall_color = Vec3<T>(T(0.0));
-
-  static constexpr int kSize = 4;  // entries of ToArray
+  T thickness_texels = kHolesThickness.Default<T>();
+  Vec3<T> wall_color = kHolesWallColor.DefaultRgb<T>();
 };
 using HolesParams = HolesParamsT<double>;
 
-// Flat layout shared by Ceres and io/:
-// [thickness_texels, wall_color_r, wall_color_g, wall_color_b].
+template <typename T, typename F>
+void VisitParams(HolesParamsT<T>& p, F&& f) {
+  f(kHolesThickness, p.thickness_texels);
+  f(kHolesWallColor, p.wall_color);
+}
+
+// Transmittance per channel (Eq. 3.4.3 with c_1 = 0, c_alpha = 1) of a
+// texel or tile with the given ratios: rho_transparent + wall_color
+// rho_occluded.
 template <typename T>
-void ToArray(const HolesParamsT<T>& p, T* x) {
-  x[0] = p.thickness_texels;
-  x[1] = p.wall_color.x;
-  x[2] = p.wall_color.y;
-  x[3] = p.wall_color.z;
-}
-
-template <typename T>
-HolesParamsT<T> HolesParamsFromArray(const T* x) {
-  HolesParamsT<T> p;
-  p.thickness_texels = x[0];
-  p.wall_color = Vec3<T>(x[1], x[2], x[3]);
-  return p;
-}
-
-inline const char* const* HolesParamNames() {
-  static const char* const kNames[HolesParams::kSize] = {
-      "thickness_texels", "wall_color_r", "wall_color_g", "wall_color_b"};
-  return kNames;
-}
-
-// "" when valid, else a message naming the field.
-inline std::string ValidateHolesParams(const HolesParams& p) {
-  std::ostringstream msg;
-  if (!(std::isfinite(p.thickness_texels) && p.thickness_texels > 0.0 &&
-        p.thickness_texels <= 1e4)) {
-    msg << "thickness_texels: must be in (0, 1e4], got " << p.thickness_texels;
-    return msg.str();
-  }
-  for (int c = 0; c < 3; ++c) {
-    if (!(p.wall_color[c] >= 0.0 && p.wall_color[c] <= 1.0)) {
-      msg << "wall_color: component " << c << " must be in [0, 1], got "
-          << p.wall_color[c];
-      return msg.str();
-    }
-  }
-  return "";
-}
-
-// Transmittance per channel (Eq. 3.4.3 with c_1 = 0, c_alpha = 1):
-// rho_transparent + wall_color rho_occluded.
-template <typename T>
-Vec3<T> HolesTransmittance(const HolesParamsT<T>& p,
-                           const HoleRatiosT<T>& ratios) {
+Vec3<T> TransmittanceOfRatios(const HolesParamsT<T>& p,
+                              const HoleRatiosT<T>& ratios) {
   return Vec3<T>(ratios.transparent) + p.wall_color * ratios.occluded;
 }
 

@@ -30,79 +30,136 @@
 #include <vector>
 
 #include "models/math.h"
+#include "models/params.h"
 
 namespace clothfit {
 
-// One lobe; every entry per channel (r, g, b).
+// The parameter table (models/params.h); every entry per channel (r, g,
+// b). The fit bounds keep every lobe value finite: the lobe base a =
+// C . (l * v) is at most |Cx| + |Cy| + |Cz| <= 9 for |C| <= 3, and
+// 9^200 ~ 1e191; N below 0.5 makes a lobe a near-constant.
+inline constexpr ParamInfo kLafortuneDiffuse = {
+    "diffuse",
+    "unitless",
+    "diffuse reflectance rho_d",
+    {0.0, kInfinity},
+    0.0,
+    1e3,
+    true,
+    {0.5, 0.5, 0.5},
+    "Daubert et al. 2001, eq. 2 (rho)",
+    3};
+inline constexpr ParamInfo kLafortuneCx = {
+    "Cx",
+    "unitless",
+    "weight of l_x v_x in a lobe (any sign)",
+    {-kInfinity, kInfinity},
+    -3.0,
+    3.0,
+    false,
+    {-1.0, -1.0, -1.0},
+    "Daubert et al. 2001, eq. 2 (C_x); Lafortune et al. 1997",
+    3};
+inline constexpr ParamInfo kLafortuneCy = {
+    "Cy",
+    "unitless",
+    "weight of l_y v_y in a lobe (any sign)",
+    {-kInfinity, kInfinity},
+    -3.0,
+    3.0,
+    false,
+    {-1.0, -1.0, -1.0},
+    "Daubert et al. 2001, eq. 2 (C_y); Lafortune et al. 1997",
+    3};
+inline constexpr ParamInfo kLafortuneCz = {
+    "Cz",
+    "unitless",
+    "weight of l_z v_z in a lobe (any sign)",
+    {-kInfinity, kInfinity},
+    -3.0,
+    3.0,
+    false,
+    {1.0, 1.0, 1.0},
+    "Daubert et al. 2001, eq. 2 (C_z); Lafortune et al. 1997",
+    3};
+inline constexpr ParamInfo kLafortuneN = {"N",
+                                          "unitless",
+                                          "lobe exponent (larger = narrower)",
+                                          {0.0, 1e4, true, false},
+                                          0.5,
+                                          200.0,
+                                          false,
+                                          {10.0, 10.0, 10.0},
+                                          "Daubert et al. 2001, eq. 2 (N)",
+                                          3};
+// Most lobes a parameter set may have (the fits use 0 to 3).
+inline constexpr int kMaxLafortuneLobes = 16;
+
+// One lobe (the entries above but the diffuse one).
 template <typename T>
 struct LafortuneLobeT {
-  // Weights of l_x v_x, l_y v_y, l_z v_z; unitless, any sign (Lafortune
-  // et al. 1997). Eq. 2 ("C_x, C_y, C_z").
-  Vec3<T> cx = Vec3<T>(T(-1.0));
-  Vec3<T> cy = Vec3<T>(T(-1.0));
-  Vec3<T> cz = Vec3<T>(T(1.0));
-  // Exponent; unitless, > 0 (larger = narrower). Eq. 2 ("N").
-  Vec3<T> n = Vec3<T>(T(10.0));
+  Vec3<T> cx = kLafortuneCx.DefaultRgb<T>();
+  Vec3<T> cy = kLafortuneCy.DefaultRgb<T>();
+  Vec3<T> cz = kLafortuneCz.DefaultRgb<T>();
+  Vec3<T> n = kLafortuneN.DefaultRgb<T>();
 };
+
+template <typename T, typename F>
+void VisitParams(LafortuneLobeT<T>& lobe, F&& f) {
+  f(kLafortuneCx, lobe.cx);
+  f(kLafortuneCy, lobe.cy);
+  f(kLafortuneCz, lobe.cz);
+  f(kLafortuneN, lobe.n);
+}
 
 template <typename T>
 struct LafortuneParamsT {
-  // Diffuse reflectance rho_d per channel; >= 0. Eq. 2 ("rho").
-  Vec3<T> diffuse = Vec3<T>(T(0.5));
+  Vec3<T> diffuse = kLafortuneDiffuse.DefaultRgb<T>();
   std::vector<LafortuneLobeT<T>> lobes;
 };
 using LafortuneLobe = LafortuneLobeT<double>;
 using LafortuneParams = LafortuneParamsT<double>;
 
-// Entries per channel of ToArray: rho_d, then Cx, Cy, Cz, N per lobe.
+// Entries per channel of the channel layout: rho_d, then Cx, Cy, Cz, N
+// per lobe.
 inline int LafortuneChannelSize(int lobes) { return 1 + 4 * lobes; }
 
-// The parameters of one channel c as a flat array (the layout the fit
-// uses): [rho_d, Cx_0, Cy_0, Cz_0, N_0, Cx_1, ...].
+// The parameters of one channel c as a flat array (the layout the fit and
+// LobeSum use): [rho_d, Cx_0, Cy_0, Cz_0, N_0, Cx_1, ...].
 template <typename T>
-void ToArray(const LafortuneParamsT<T>& p, int c, T* x) {
+void LafortuneChannelToArray(const LafortuneParamsT<T>& p, int c, T* x) {
   *x++ = p.diffuse[c];
   for (const LafortuneLobeT<T>& lobe : p.lobes) {
-    *x++ = lobe.cx[c];
-    *x++ = lobe.cy[c];
-    *x++ = lobe.cz[c];
-    *x++ = lobe.n[c];
+    VisitParamsConst(
+        lobe, [&](const ParamInfo&, const Vec3<T>& field) { *x++ = field[c]; });
   }
 }
 
-// Inverse of ToArray for channel c of *p (which must have the lobes).
+// Inverse of LafortuneChannelToArray for channel c of *p (which must have
+// the lobes).
 template <typename T>
 void LafortuneChannelFromArray(const T* x, int c, LafortuneParamsT<T>* p) {
   p->diffuse[c] = *x++;
   for (LafortuneLobeT<T>& lobe : p->lobes) {
-    lobe.cx[c] = *x++;
-    lobe.cy[c] = *x++;
-    lobe.cz[c] = *x++;
-    lobe.n[c] = *x++;
+    VisitParams(lobe,
+                [&](const ParamInfo&, Vec3<T>& field) { field[c] = *x++; });
   }
 }
 
+// The table's ranges, each message naming the entry by its path
+// ("lobes[1].N: component 0 must be in (0, 10000], got -1").
 inline std::string ValidateLafortuneParams(const LafortuneParams& p) {
-  std::ostringstream msg;
   for (int c = 0; c < 3; ++c) {
-    if (!(std::isfinite(p.diffuse[c]) && p.diffuse[c] >= 0.0)) {
-      msg << "diffuse: must be finite and >= 0, got " << p.diffuse[c];
-      return msg.str();
-    }
+    const std::string e = CheckParam(kLafortuneDiffuse, p.diffuse[c], c);
+    if (!e.empty()) return e;
+  }
+  if (p.lobes.size() > static_cast<size_t>(kMaxLafortuneLobes)) {
+    return "lobes: at most " + std::to_string(kMaxLafortuneLobes) +
+           " lobes, got " + std::to_string(p.lobes.size());
   }
   for (size_t k = 0; k < p.lobes.size(); ++k) {
-    const LafortuneLobe& lobe = p.lobes[k];
-    for (int c = 0; c < 3; ++c) {
-      const std::string where = "lobes[" + std::to_string(k) + "].";
-      if (!std::isfinite(lobe.cx[c]) || !std::isfinite(lobe.cy[c]) ||
-          !std::isfinite(lobe.cz[c])) {
-        return where + "Cx/Cy/Cz: must be finite";
-      }
-      if (!(std::isfinite(lobe.n[c]) && lobe.n[c] > 0.0 && lobe.n[c] <= 1e4)) {
-        msg << where << "N: must be in (0, 1e4], got " << lobe.n[c];
-        return msg.str();
-      }
-    }
+    const std::string e = ValidateParams(p.lobes[k]);
+    if (!e.empty()) return "lobes[" + std::to_string(k) + "]." + e;
   }
   return "";
 }
@@ -122,35 +179,46 @@ T LobePower(const T& a, const T& n) {
   }
 }
 
-// f1 per channel (eq. 2). The directions' scalar type G may differ from
-// the parameters' T (a fit evaluates fixed directions with Jet parameters).
+// The bracket of eq. 2 for one channel, rho_d + sum_k [Cx xx + Cy yy +
+// Cz zz]^N, from its channel array x (LafortuneChannelToArray) and the
+// products xx = l_x v_x, yy = l_y v_y, zz = l_z v_z. The products' scalar
+// type G may differ from the parameters' T: a fit multiplies fixed double
+// products with Jet parameters, a third of the cost of Jet times Jet.
 template <typename T, typename G>
-Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
-                    const Vec3<G>& v) {
-  const G xx = l.x * v.x, yy = l.y * v.y, zz = l.z * v.z;
-  Vec3<T> sum = p.diffuse;
-  for (const LafortuneLobeT<T>& lobe : p.lobes) {
-    for (int c = 0; c < 3; ++c) {
-      sum[c] += LobePower(lobe.cx[c] * xx + lobe.cy[c] * yy + lobe.cz[c] * zz,
-                          lobe.n[c]);
-    }
-  }
-  return sum * T(l.z > G(0.0) ? l.z : G(0.0));
-}
-
-// f1 of one channel only (what the per-channel fit evaluates).
-template <typename T, typename G>
-T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
-                     const Vec3<G>& v) {
-  const G xx = l.x * v.x, yy = l.y * v.y, zz = l.z * v.z;
+T LobeSum(const T* x, int lobes, const G& xx, const G& yy, const G& zz) {
   T sum = x[0];
   for (int k = 0; k < lobes; ++k) {
     const T* lobe = x + 1 + 4 * k;
-    // Products with the directions' scalars (not T(xx) * ...): a Jet times
-    // a double costs a third of a Jet times a Jet.
     sum += LobePower(lobe[0] * xx + lobe[1] * yy + lobe[2] * zz, lobe[3]);
   }
-  return sum * (l.z > G(0.0) ? l.z : G(0.0));
+  return sum;
+}
+
+// The foreshortening l.z of eq. 2, taken as 0 below the texel's plane.
+template <typename G>
+G Foreshortening(const Vec3<G>& l) {
+  return l.z > G(0.0) ? l.z : G(0.0);
+}
+
+// f1 of one channel (eq. 2) from its channel array.
+template <typename T, typename G>
+T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
+                     const Vec3<G>& v) {
+  return LobeSum(x, lobes, l.x * v.x, l.y * v.y, l.z * v.z) * Foreshortening(l);
+}
+
+// f1 per channel (eq. 2). Requires at most kMaxLafortuneLobes lobes.
+template <typename T, typename G>
+Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
+                    const Vec3<G>& v) {
+  const int lobes = static_cast<int>(p.lobes.size());
+  T x[1 + 4 * kMaxLafortuneLobes];
+  Vec3<T> f;
+  for (int c = 0; c < 3; ++c) {
+    LafortuneChannelToArray(p, c, x);
+    f[c] = LafortuneF1Channel(x, lobes, l, v);
+  }
+  return f;
 }
 
 // A texel's local frame: tangent, bi-normal, normal (unit, right-handed).
@@ -193,6 +261,9 @@ struct ViewTableValue {
   glm::dvec3 color{1.0};
   double alpha = 1.0;
 };
+
+// The name of that interpolation in parameter files and mip maps.
+inline constexpr char kLutInterpolation[] = "shepard, angular distance power 3";
 
 inline ViewTableValue LookupView(const ViewTable& table, const glm::dvec3& v) {
   ViewTableValue out;
@@ -256,6 +327,15 @@ inline glm::dvec3 LafortuneRho(const LafortuneModel& m, const glm::dvec3& l,
   const TexelFrame frame = MakeTexelFrame(m.normal);
   return LookupView(m.lut, v).color *
          LafortuneF1(m.params, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
+}
+
+template <>
+inline constexpr ModelInfo kModelInfo<LafortuneModel> = {
+    "lafortune", Quantity::kCosineWeighted, false};
+
+inline glm::dvec3 NativeValue(const LafortuneModel& m, const glm::dvec3& wi,
+                              const glm::dvec3& wo) {
+  return LafortuneRho(m, wi, wo);
 }
 
 }  // namespace clothfit

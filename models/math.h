@@ -62,9 +62,9 @@ inline T Degrees(const T& radians) {
   return radians * T(180.0 / kPi);
 }
 
-// Converts a double vector to the scalar type T.
-template <typename T>
-inline Vec3<T> Cast(const glm::dvec3& v) {
+// Converts a vector to the scalar type T.
+template <typename T, typename G>
+inline Vec3<T> Cast(const Vec3<G>& v) {
   return Vec3<T>(T(v.x), T(v.y), T(v.z));
 }
 

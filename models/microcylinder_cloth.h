@@ -23,6 +23,7 @@
 
 #include "models/math.h"
 #include "models/microcylinder_thread.h"
+#include "models/params.h"
 
 namespace clothfit {
 
@@ -90,16 +91,39 @@ inline std::string ValidateTangentCurve(const TangentCurve& c) {
   return msg.str();
 }
 
+// The parameter table of a weave's threads (models/params.h); each thread
+// also has the thread entries of models/microcylinder_thread.h.
+inline constexpr ParamInfo kClothCoverage = {
+    "coverage",
+    "unitless",
+    "fraction of the patch a thread covers (the threads' sum <= 1)",
+    {0.0, 1.0},
+    0.0,
+    1.0,
+    true,
+    {0.33},
+    "Sadeghi et al. 2013, eq. 12 (a_j), Table 3",
+    1};
+inline constexpr ParamInfo kClothOffsets = {
+    "offsets_deg",
+    "degrees",
+    "tangent offsets psi of a thread's samples (rotation towards +z)",
+    {-90.0, 90.0},
+    -90.0,
+    90.0,
+    true,
+    {0.0},
+    "Sadeghi et al. 2013, eq. 11 (C_j), Table 3",
+    1};
+
 // One thread type of a weave.
 template <typename T>
 struct ClothThreadT {
   // Direction of the thread in the surface frame (SPEC §1).
   ThreadDirection direction = ThreadDirection::kU;
-  // Fraction of the patch this thread covers, a_j; [0, 1], sum over threads
-  // <= 1 (the rest is gaps). Eq. 12, Table 3 ("a").
-  T coverage = T(0.33);
-  // Tangent offsets of the samples C_j; degrees, [-90, 90]. Eq. 11, Table 3.
-  // No default: a weave's samples always come from a file or a preset.
+  T coverage = kClothCoverage.Default<T>();  // a_j
+  // The tangent offsets of the samples C_j. No default: a weave's samples
+  // always come from a file or a preset.
   std::vector<T> offsets_deg;
   // When the file gave a tangent curve, the curve (offsets_deg holds its
   // samples); curve.samples == 0 means the samples were given explicitly.
@@ -115,76 +139,39 @@ struct ClothParamsT {
 using ClothThread = ClothThreadT<double>;
 using ClothParams = ClothParamsT<double>;
 
-// Number of entries of the flat layout below.
-template <typename T>
-int ClothArraySize(const ClothParamsT<T>& c) {
-  int n = 0;
-  for (const auto& th : c.threads) {
-    n += 1 + ThreadParams::kSize + static_cast<int>(th.offsets_deg.size());
-  }
-  return n;
+// "threads[j]." for messages and report names.
+inline std::string ClothThreadPrefix(size_t j) {
+  return "threads[" + std::to_string(j) + "].";
 }
 
-// Flat layout shared by Ceres and io/: per thread, in order,
-// [coverage, ThreadParams (7), offsets_deg...].
-template <typename T>
-void ToArray(const ClothParamsT<T>& c, T* x) {
-  for (const auto& th : c.threads) {
-    *x++ = th.coverage;
-    ToArray(th.params, x);
-    x += ThreadParams::kSize;
-    for (const T& o : th.offsets_deg) *x++ = o;
-  }
-}
-
-// Inverse of ToArray; `layout` gives the number of threads, their
-// directions, curves and sample counts.
-template <typename T>
-ClothParamsT<T> ClothParamsFromArray(const T* x, const ClothParams& layout) {
-  ClothParamsT<T> c;
-  for (const ClothThread& th : layout.threads) {
-    ClothThreadT<T> out;
-    out.direction = th.direction;
-    out.curve = th.curve;
-    out.coverage = *x++;
-    out.params = ThreadParamsFromArray(x);
-    x += ThreadParams::kSize;
-    out.offsets_deg.assign(x, x + th.offsets_deg.size());
-    x += th.offsets_deg.size();
-    c.threads.push_back(out);
-  }
-  return c;
-}
-
+// Checks every thread's entries against the tables and the coverages' sum;
+// "" when valid, else a message naming the entry by its path
+// ("threads[1].kd: must be in [0, 1], got 2").
 inline std::string ValidateClothParams(const ClothParams& c) {
-  std::ostringstream msg;
   if (c.threads.empty()) return "threads: at least one thread is required";
   double sum = 0.0;
   for (size_t j = 0; j < c.threads.size(); ++j) {
     const ClothThread& th = c.threads[j];
-    const std::string where = "threads[" + std::to_string(j) + "].";
-    if (!(std::isfinite(th.coverage) && th.coverage >= 0.0 &&
-          th.coverage <= 1.0)) {
-      msg << where << "coverage: must be in [0, 1], got " << th.coverage;
-      return msg.str();
-    }
+    const std::string where = ClothThreadPrefix(j);
+    std::string e = CheckParam(kClothCoverage, th.coverage);
+    if (!e.empty()) return where + e;
     sum += th.coverage;
     if (th.offsets_deg.empty()) {
       return where + "offsets_deg: at least one tangent sample is required";
     }
     for (double o : th.offsets_deg) {
-      if (!(std::isfinite(o) && std::abs(o) <= 90.0)) {
-        msg << where << "offsets_deg: must be in [-90, 90], got " << o;
-        return msg.str();
-      }
+      e = CheckParam(kClothOffsets, o);
+      if (!e.empty()) return where + e;
     }
-    const std::string e = ValidateThreadParams(th.params);
+    e = ValidateParams(th.params);
     if (!e.empty()) return where + e;
   }
   if (sum > 1.0 + 1e-9) {
+    std::ostringstream msg;
     msg << "threads: coverages sum to " << sum << ", must be <= 1";
+    return msg.str();
   }
-  return msg.str();
+  return "";
 }
 
 // Shadowing/masking M (eq. 8) or reweighting P (eq. 10) from the cosines of
@@ -312,8 +299,15 @@ Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
   return ClothRhoFromSamples(cloth, OnTheFly{cloth, wi, wo}, wi.z);
 }
 
-// Smallest wi.z used to turn rho into the BRDF f = rho / wi.z, so that f
-// stays finite at exactly grazing incidence (models/evaluate.h).
-inline constexpr double kMinCosIncidence = 1e-7;
+template <typename T>
+inline constexpr ModelInfo kModelInfo<ClothParamsT<T>> = {
+    "cloth", Quantity::kCosineWeighted, false};
+
+// A cloth patch in the surface frame: rho (eq. 13).
+template <typename T, typename G>
+Vec3<T> NativeValue(const ClothParamsT<T>& c, const Vec3<G>& wi,
+                    const Vec3<G>& wo) {
+  return ClothRho(c, Cast<T>(wi), Cast<T>(wo));
+}
 
 }  // namespace clothfit

@@ -25,95 +25,87 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <sstream>
-#include <string>
 
 #include "models/math.h"
+#include "models/params.h"
 
 namespace clothfit {
 
-// Parameters of one thread type. Defaults: Linen Plain (Table 2).
+// The parameter table of a thread (models/params.h). Defaults: Linen
+// Plain (Table 2).
+inline constexpr ParamInfo kThreadEta = {
+    "eta",
+    "unitless",
+    "index of refraction of the fibres",
+    {1.0, 5.0, true, false},
+    1.01,
+    3.0,
+    false,
+    {1.46},
+    "Sadeghi et al. 2013, eq. 3 (Fresnel), Table 2",
+    1};
+inline constexpr ParamInfo kThreadKd = {
+    "kd",       "unitless", "fraction of volume scattering that is isotropic",
+    {0.0, 1.0}, 0.0,        1.0,
+    true,       {0.3},      "Sadeghi et al. 2013, eq. 4 (k_d), Table 2",
+    1};
+inline constexpr ParamInfo kThreadGammaS = {
+    "gamma_s_deg",
+    "degrees",
+    "width of the surface-reflection Gaussian",
+    {0.0, 90.0, true, false},
+    0.2,
+    90.0,
+    false,
+    {12.0},
+    "Sadeghi et al. 2013, eq. 3 (gamma_s), Table 2",
+    1};
+inline constexpr ParamInfo kThreadGammaV = {
+    "gamma_v_deg",
+    "degrees",
+    "width of the volume-scattering Gaussian",
+    {0.0, 90.0, true, false},
+    0.2,
+    90.0,
+    false,
+    {24.0},
+    "Sadeghi et al. 2013, eq. 4 (gamma_v), Table 2",
+    1};
+// Usually <= 1; the fit's upper bound 1e3 only keeps numbers finite.
+inline constexpr ParamInfo kThreadAlbedo = {
+    "albedo",
+    "unitless",
+    "volume-scattering albedo per channel",
+    {0.0, kInfinity},
+    0.0,
+    1e3,
+    true,
+    {0.06, 0.24, 0.3},
+    "Sadeghi et al. 2013, eq. 4 (A), Table 2",
+    3};
+
+// Parameters of one thread type (the fields of the table above).
 template <typename T>
 struct ThreadParamsT {
-  // Index of refraction of the fibres; unitless, (1, 5]. Eq. 3 (Fresnel),
-  // Table 2 ("eta").
-  T eta = T(1.46);
-  // Fraction of volume scattering that is isotropic; [0, 1]. Eq. 4 ("k_d").
-  T kd = T(0.3);
-  // Width of the surface-reflection Gaussian; degrees, (0, 90]. Eq. 3
-  // ("gamma_s").
-  T gamma_s_deg = T(12.0);
-  // Width of the volume-scattering Gaussian; degrees, (0, 90]. Eq. 4
-  // ("gamma_v").
-  T gamma_v_deg = T(24.0);
-  // Volume-scattering albedo per channel (r, g, b); >= 0, usually <= 1.
-  // Eq. 4 ("A").
-  Vec3<T> albedo = Vec3<T>(T(0.06), T(0.24), T(0.3));
-
-  static constexpr int kSize = 7;  // entries of ToArray
+  T eta = kThreadEta.Default<T>();
+  T kd = kThreadKd.Default<T>();
+  T gamma_s_deg = kThreadGammaS.Default<T>();
+  T gamma_v_deg = kThreadGammaV.Default<T>();
+  Vec3<T> albedo = kThreadAlbedo.DefaultRgb<T>();
 };
 using ThreadParams = ThreadParamsT<double>;
 
-// Flat layout shared by Ceres and io/:
-// [eta, kd, gamma_s_deg, gamma_v_deg, albedo_r, albedo_g, albedo_b].
-template <typename T>
-void ToArray(const ThreadParamsT<T>& p, T* x) {
-  x[0] = p.eta;
-  x[1] = p.kd;
-  x[2] = p.gamma_s_deg;
-  x[3] = p.gamma_v_deg;
-  x[4] = p.albedo.x;
-  x[5] = p.albedo.y;
-  x[6] = p.albedo.z;
+template <typename T, typename F>
+void VisitParams(ThreadParamsT<T>& p, F&& f) {
+  f(kThreadEta, p.eta);
+  f(kThreadKd, p.kd);
+  f(kThreadGammaS, p.gamma_s_deg);
+  f(kThreadGammaV, p.gamma_v_deg);
+  f(kThreadAlbedo, p.albedo);
 }
 
-template <typename T>
-ThreadParamsT<T> ThreadParamsFromArray(const T* x) {
-  ThreadParamsT<T> p;
-  p.eta = x[0];
-  p.kd = x[1];
-  p.gamma_s_deg = x[2];
-  p.gamma_v_deg = x[3];
-  p.albedo = Vec3<T>(x[4], x[5], x[6]);
-  return p;
-}
-
-// Names of the ToArray entries, in order (for reports and --fix/--free).
-inline const char* const* ThreadParamNames() {
-  static const char* const kNames[ThreadParams::kSize] = {
-      "eta",      "kd",       "gamma_s_deg", "gamma_v_deg",
-      "albedo_r", "albedo_g", "albedo_b"};
-  return kNames;
-}
-
-// Checks the documented ranges; returns "" when valid, otherwise a message
-// that names the field, e.g. "gamma_s_deg: must be in (0, 90], got -1".
-inline std::string ValidateThreadParams(const ThreadParams& p) {
-  std::ostringstream msg;
-  auto in = [](double v, double lo, double hi) {
-    return std::isfinite(v) && v >= lo && v <= hi;
-  };
-  if (!(std::isfinite(p.eta) && p.eta > 1.0 && p.eta <= 5.0)) {
-    msg << "eta: must be in (1, 5], got " << p.eta;
-  } else if (!in(p.kd, 0.0, 1.0)) {
-    msg << "kd: must be in [0, 1], got " << p.kd;
-  } else if (!(std::isfinite(p.gamma_s_deg) && p.gamma_s_deg > 0.0 &&
-               p.gamma_s_deg <= 90.0)) {
-    msg << "gamma_s_deg: must be in (0, 90], got " << p.gamma_s_deg;
-  } else if (!(std::isfinite(p.gamma_v_deg) && p.gamma_v_deg > 0.0 &&
-               p.gamma_v_deg <= 90.0)) {
-    msg << "gamma_v_deg: must be in (0, 90], got " << p.gamma_v_deg;
-  } else {
-    for (int c = 0; c < 3; ++c) {
-      if (!(std::isfinite(p.albedo[c]) && p.albedo[c] >= 0.0)) {
-        msg << "albedo: component " << c << " must be >= 0, got "
-            << p.albedo[c];
-        break;
-      }
-    }
-  }
-  return msg.str();
-}
+// Entries of the flat layout (models/params.h ToArray).
+inline constexpr int kThreadFlatSize = 7;
 
 // Unit-area Gaussian of width s (radians), SPEC §3.1 g(s, x).
 template <typename T>
@@ -276,6 +268,17 @@ Vec3<T> ThreadBsdfLocal(const ThreadParamsT<T>& p, const Vec3<T>& wi,
   const ThreadGeometry<T> g = ComputeThreadGeometry(t, n, wi, wo);
   if (!g.valid) return Vec3<T>(T(0.0));
   return ThreadBsdf(g, p);
+}
+
+template <typename T>
+inline constexpr ModelInfo kModelInfo<ThreadParamsT<T>> = {
+    "thread", Quantity::kBrdf, false};
+
+// A thread alone, in the thread frame: its BSDF f (eq. 2).
+template <typename T, typename G>
+Vec3<T> NativeValue(const ThreadParamsT<T>& p, const Vec3<G>& wi,
+                    const Vec3<G>& wo) {
+  return ThreadBsdfLocal(p, Cast<T>(wi), Cast<T>(wo));
 }
 
 }  // namespace clothfit

@@ -52,6 +52,7 @@
 #include <string>
 
 #include "models/math.h"
+#include "models/params.h"
 
 namespace clothfit {
 
@@ -91,73 +92,50 @@ inline constexpr double kSlabPaperTauLimit = 0.2;
 // as outside the model's regime.
 inline constexpr double kSlabRegimeTolerance = 0.01;
 
-// Parameters of the slab. Defaults: a thin, bright curtain (tau = 0.1, well
-// inside the single-scattering regime; A = 1 as in the paper's Fig. 2).
+// The parameter table (models/params.h). Defaults: a thin, bright curtain
+// (tau = 0.1, well inside the single-scattering regime; A = 1 as in the
+// paper's Fig. 2). A fit searches tau in [1e-6, 100]: beyond, the data
+// cannot tell tau apart (the slab is clear or opaque).
+inline constexpr ParamInfo kSlabTau = {
+    "tau",
+    "unitless",
+    "optical thickness: the extinction coefficient integrated across the "
+    "slab (a scalar in files sets all three channels)",
+    {kSlabMinTau, kSlabMaxTau},
+    1e-6,
+    100.0,
+    false,
+    {0.1, 0.1, 0.1},
+    "Frisvad et al., Sec. 3 (tau_1); SPEC §3.4",
+    3};
+inline constexpr ParamInfo kSlabAlbedo = {
+    "albedo",
+    "unitless",
+    "single-scattering albedo sigma_s / sigma_t (phase function A / (4 pi))",
+    {0.0, 1.0},
+    0.0,
+    1.0,
+    true,
+    {1.0, 1.0, 1.0},
+    "Frisvad et al., Sec. 3 (A)",
+    3};
+
 template <typename T>
 struct SlabParamsT {
-  // Optical thickness per channel (r, g, b): the extinction coefficient
-  // integrated across the slab; unitless, [1e-12, 1e4] (> 0). Frisvad et al.
-  // Sec. 3 ("tau_1"); SPEC §3.4. A scalar in files sets all three.
-  Vec3<T> tau = Vec3<T>(T(0.1));
-  // Single-scattering albedo sigma_s / sigma_t per channel; unitless,
-  // [0, 1]. Frisvad et al. Sec. 3 ("A", in the phase function A / (4 pi)).
-  Vec3<T> albedo = Vec3<T>(T(1.0));
-
-  static constexpr int kSize = 6;  // entries of ToArray
+  Vec3<T> tau = kSlabTau.DefaultRgb<T>();
+  Vec3<T> albedo = kSlabAlbedo.DefaultRgb<T>();
 };
 using SlabParams = SlabParamsT<double>;
 
-// Flat layout shared by Ceres and io/:
-// [tau_r, tau_g, tau_b, albedo_r, albedo_g, albedo_b].
-template <typename T>
-void ToArray(const SlabParamsT<T>& p, T* x) {
-  for (int c = 0; c < 3; ++c) {
-    x[c] = p.tau[c];
-    x[3 + c] = p.albedo[c];
-  }
-}
-
-template <typename T>
-SlabParamsT<T> SlabParamsFromArray(const T* x) {
-  SlabParamsT<T> p;
-  p.tau = Vec3<T>(x[0], x[1], x[2]);
-  p.albedo = Vec3<T>(x[3], x[4], x[5]);
-  return p;
-}
-
-// Names of the ToArray entries, in order.
-inline const char* const* SlabParamNames() {
-  static const char* const kNames[SlabParams::kSize] = {
-      "tau_r", "tau_g", "tau_b", "albedo_r", "albedo_g", "albedo_b"};
-  return kNames;
+template <typename T, typename F>
+void VisitParams(SlabParamsT<T>& p, F&& f) {
+  f(kSlabTau, p.tau);
+  f(kSlabAlbedo, p.albedo);
 }
 
 // Whether the three channels share one tau (written as a scalar).
 inline bool SlabTauIsScalar(const SlabParams& p) {
   return p.tau.x == p.tau.y && p.tau.x == p.tau.z;
-}
-
-// Checks the documented ranges; returns "" when valid, otherwise a message
-// that names the field, e.g. "tau: must be > 0 (in [1e-12, 1e4]), got 0".
-inline std::string ValidateSlabParams(const SlabParams& p) {
-  std::ostringstream msg;
-  for (int c = 0; c < 3; ++c) {
-    const double tau = p.tau[c];
-    if (!(std::isfinite(tau) && tau >= kSlabMinTau && tau <= kSlabMaxTau)) {
-      msg << "tau: must be > 0 (in [" << kSlabMinTau << ", " << kSlabMaxTau
-          << "]), got " << tau;
-      if (!SlabTauIsScalar(p)) msg << " in channel " << c;
-      return msg.str();
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    const double a = p.albedo[c];
-    if (!(std::isfinite(a) && a >= 0.0 && a <= 1.0)) {
-      msg << "albedo: component " << c << " must be in [0, 1], got " << a;
-      return msg.str();
-    }
-  }
-  return "";
 }
 
 // E(y) = (1 - exp(-y)) / y by its Taylor series (for 0 <= y < 0.25).
@@ -261,6 +239,10 @@ Vec3<T> SlabDirectTransmittance(const SlabParamsT<T>& p, const Vec3<G>& w) {
                  DirectTransmittance(p.tau.z, mu));
 }
 
+template <typename T>
+inline constexpr ModelInfo kModelInfo<SlabParamsT<T>> = {"slab",
+                                                         Quantity::kBrdf, true};
+
 // Whether wo lies on the far side of the slab from wi (transmission).
 template <typename G>
 bool SlabTransmits(const Vec3<G>& wi, const Vec3<G>& wo) {
@@ -278,6 +260,17 @@ Vec3<T> SlabBsdf(const SlabParamsT<T>& p, const Vec3<G>& wi,
   const T mu_o(abs(wo.z));
   return SlabTransmits(wi, wo) ? SlabTransmission(p, mu_i, mu_o)
                                : SlabReflection(p, mu_i, mu_o);
+}
+
+template <typename T, typename G>
+Vec3<T> NativeValue(const SlabParamsT<T>& p, const Vec3<G>& wi,
+                    const Vec3<G>& wo) {
+  return SlabBsdf(p, wi, wo);
+}
+
+template <typename T, typename G>
+Vec3<T> Transmittance(const SlabParamsT<T>& p, const Vec3<G>& wo) {
+  return SlabDirectTransmittance(p, wo);
 }
 
 // How wrong single scattering is, for double only (not part of the fitted

@@ -173,10 +173,8 @@ PreviewImage RenderSlab(const SlabParams& params,
   return image;
 }
 
-PreviewImage RenderHoles(
-    const HolesParams& params,
-    const std::function<HoleRatios(const glm::dvec3&)>& ratios,
-    const PreviewOptions& options) {
+PreviewImage RenderHoles(const HolesModel& model,
+                         const PreviewOptions& options) {
   const int size = options.size;
   PreviewImage image = Blank(3, size);
   const double d = options.light_distance;
@@ -189,8 +187,8 @@ PreviewImage RenderHoles(
     HitPanel(glm::dvec2(0.0), Radians(tilt_deg), &probe);
     // One view for the whole (flat, orthographically seen) panel.
     const glm::dvec3 wo_l = ToLocal(wo, probe.x_s, probe.y_s, probe.n);
-    const HoleRatios r = ratios(wo_l);
-    const glm::dvec3 transmittance = HolesTransmittance(params, r);
+    const HoleRatios r = HolesTileRatios(model.params, *model.tile, wo_l);
+    const glm::dvec3 transmittance = TransmittanceOfRatios(model.params, r);
     for (int j = 0; j < size; ++j) {
       for (int i = 0; i < size; ++i) {
         const glm::dvec2 p = PanelPoint(i, j, size);

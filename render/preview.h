@@ -31,7 +31,7 @@
 
 #include "api/material.h"
 #include "models/evaluate.h"
-#include "models/holes.h"
+#include "models/holes_tile.h"
 
 namespace clothfit {
 
@@ -91,11 +91,10 @@ SurfaceRho MipmapRho(const Material& material, double tile);
 // Front-lit and back-lit panels.
 PreviewImage RenderSlab(const SlabParams& params,
                         const PreviewOptions& options);
-// `ratios(wo)`: the hole texture's ratios for the view wo (panel frame).
-PreviewImage RenderHoles(
-    const HolesParams& params,
-    const std::function<HoleRatios(const glm::dvec3&)>& ratios,
-    const PreviewOptions& options);
+// A holed layer (its tile required: holes/hole_texture.h LoadHolesModel)
+// on panels at three tilts over a checker.
+PreviewImage RenderHoles(const HolesModel& model,
+                         const PreviewOptions& options);
 
 // `top` above `bottom` (same width). Throws InputError otherwise.
 PreviewImage StackRows(const PreviewImage& top, const PreviewImage& bottom);

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "charts/bench.h"
+#include "bench/bench.h"
 #include "charts/chart.h"
 #include "charts/heat_map.h"
 #include "io/atomic_file.h"

@@ -1022,15 +1022,15 @@ void WriteTestMip(const std::string& path) {
     level.height = sizes[l][1];
     for (int y = 0; y < level.height; ++y) {
       for (int x = 0; x < level.width; ++x) {
-        TexelFit t;
-        t.model.params.diffuse = MipDiffuse(l, x, y);
+        LafortuneFitResult t;
+        t.params.params.diffuse = MipDiffuse(l, x, y);
         if (MipHasLobe(l, x, y)) {
           LafortuneLobe lobe;
           lobe.cx = glm::dvec3(-0.5);
           lobe.cy = glm::dvec3(-0.75);
           lobe.cz = glm::dvec3(1.0);
           lobe.n = glm::dvec3(3.0);
-          t.model.params.lobes.push_back(lobe);
+          t.params.params.lobes.push_back(lobe);
         }
         level.texels.push_back(t);
       }

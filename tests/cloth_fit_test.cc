@@ -212,7 +212,7 @@ void ExpectWithinNoise(const ClothFitResult& result, const Truth& truth,
 
 void ExpectAllFinite(const ClothFitResult& result) {
   for (const ClothThread& th : result.params.threads) {
-    double x[ThreadParams::kSize];
+    double x[kThreadFlatSize];
     ToArray(th.params, x);
     for (double v : x) EXPECT_TRUE(std::isfinite(v)) << v;
     EXPECT_TRUE(std::isfinite(th.coverage));

@@ -133,10 +133,11 @@ TEST(HolesCliTest, TruthThenFitRecoversTheThickness) {
   r = RunClothfit(dir, {"fit", "--model", "holes", "--data", truth, "--mask",
                         mask, "--out", params});
   ASSERT_EQ(r.status, 0) << Describe(r);
-  const HolesParamFile fit = ReadHolesParamFile(params);
-  EXPECT_NEAR(fit.params.thickness_texels, 2.0, 0.02);
-  EXPECT_EQ(fit.mask, mask);
-  EXPECT_EQ(fit.method, "extension");
+  const ParamFile fit = ReadParamFile(params);
+  EXPECT_NEAR(ModelOf<HolesModel>(fit, params).params.thickness_texels, 2.0,
+              0.02);
+  EXPECT_EQ(fit.holes.path, mask);
+  EXPECT_EQ(fit.holes.method, HoleMethod::kExtension);
   EXPECT_NE(fit.fit_json.find("\"stddev\":{\"thickness_texels\""),
             std::string::npos)
       << fit.fit_json;

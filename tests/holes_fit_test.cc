@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "data_synthetic/holes_truth.h"
+#include "holes/hole_texture.h"
 #include "io/input_error.h"
 #include "tests/fit_test_util.h"
 
@@ -28,10 +29,10 @@ MeasurementTable TruthTable(const Mask& mask, const HolesParams& truth,
   for (double theta : thetas) {
     for (double phi : phis) {
       TableRow row;
-      row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
+      row.wo = DirectionFromAngles(Radians(theta), Radians(phi));
       const HoleRatios ratios = HoleTruthTile(
           mask, ViewOffset(truth.thickness_texels, row.wo), samples);
-      row.value = HolesTransmittance(truth, ratios);
+      row.value = TransmittanceOfRatios(truth, ratios);
       if (channels == 1) row.value = glm::dvec3(row.value.x);
       table.rows.push_back(row);
     }
@@ -47,7 +48,7 @@ const ParameterReport& Param(const FitReport& report, const char* name) {
   return report.parameters.front();
 }
 
-// Issue 6: the thickness fit recovers h within 1 % from ground-truth data.
+// The thickness fit recovers h within 1 % from ground-truth data.
 TEST(HolesFitTest, RecoversThicknessOfRandomMaskWithinOnePercent) {
   const Mask mask = RandomMask(24, 24, 0.45, 11);
   const HoleTexture texture = AnalyzeMask(mask, true);
@@ -56,9 +57,8 @@ TEST(HolesFitTest, RecoversThicknessOfRandomMaskWithinOnePercent) {
   const MeasurementTable table = TruthTable(mask, truth, {0, 15, 30, 45, 55},
                                             {0, 40, 110, 200, 290}, 1, 32);
   for (HoleMethod method : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
-    HolesFitOptions options;
-    options.method = method;
-    const HolesFitResult fit = FitHoles(table, texture, options);
+    const HolesFitResult fit =
+        FitHoles(table, HolesTileOf(texture, method), HolesFitOptions());
     ASSERT_TRUE(fit.report.usable) << fit.report.message;
     EXPECT_TRUE(fit.report.converged) << fit.report.message;
     EXPECT_NEAR(fit.params.thickness_texels, 0.6, 0.006);
@@ -80,8 +80,8 @@ TEST(HolesFitTest, RecoversThickLayerOfMosquitoNetWithTheExtension) {
   truth.thickness_texels = 2.0;
   const MeasurementTable table = TruthTable(
       mask, truth, {0, 10, 20, 30, 40, 50, 60}, {0, 30, 45, 100, 230}, 1);
-  HolesFitOptions options;
-  const HolesFitResult fit = FitHoles(table, texture, options);
+  const HolesFitOptions options;
+  const HolesFitResult fit = FitHoles(table, HolesTileOf(texture), options);
   ASSERT_TRUE(fit.report.usable) << fit.report.message;
   EXPECT_TRUE(fit.report.converged) << fit.report.message;
   std::printf("h = %.5f (true 2), rms %.2g; Algorithm 3.1: ",
@@ -89,8 +89,8 @@ TEST(HolesFitTest, RecoversThickLayerOfMosquitoNetWithTheExtension) {
   EXPECT_NEAR(fit.params.thickness_texels, 2.0, 0.02);
   EXPECT_LT(fit.report.rms, 0.005);
   // Algorithm 3.1 cannot explain these data (it misses the far walls).
-  options.method = HoleMethod::kAlgorithm31;
-  const HolesFitResult thesis = FitHoles(table, texture, options);
+  const HolesFitResult thesis =
+      FitHoles(table, HolesTileOf(texture, HoleMethod::kAlgorithm31), options);
   std::printf("h = %.5f, rms %.2g\n", thesis.params.thickness_texels,
               thesis.report.rms);
   EXPECT_GT(thesis.report.rms, 5.0 * fit.report.rms);
@@ -106,7 +106,7 @@ TEST(HolesFitTest, RecoversWallColourPerChannel) {
       TruthTable(mask, truth, {0, 20, 35, 50, 65}, {0, 30, 60, 135}, 3);
   HolesFitOptions options;
   options.fit_wall_color = true;
-  const HolesFitResult fit = FitHoles(table, texture, options);
+  const HolesFitResult fit = FitHoles(table, HolesTileOf(texture), options);
   ASSERT_TRUE(fit.report.usable) << fit.report.message;
   std::printf("h = %.5f (true 1.3), wall colour %.4f %.4f %.4f\n",
               fit.params.thickness_texels, fit.params.wall_color.x,
@@ -123,7 +123,8 @@ TEST(HolesFitTest, NormalIncidenceCannotDetermineTheThickness) {
   const HoleTexture texture = AnalyzeMask(mask, true);
   const MeasurementTable table =
       TruthTable(mask, HolesParams(), {0}, {0, 90}, 1);
-  const HolesFitResult fit = FitHoles(table, texture, HolesFitOptions());
+  const HolesFitResult fit =
+      FitHoles(table, HolesTileOf(texture), HolesFitOptions());
   EXPECT_TRUE(testing_util::Contains(
       testing_util::UndeterminedNames(fit.report.identifiability),
       "thickness_texels"))
@@ -132,17 +133,14 @@ TEST(HolesFitTest, NormalIncidenceCannotDetermineTheThickness) {
 
 TEST(HolesFitTest, RejectsTablesItCannotExplain) {
   const HoleTexture texture = AnalyzeMask(SquareHoleMask(2, 1), false);
+  const HolesTile tile = HolesTileOf(texture, HoleMethod::kAlgorithm31);
   MeasurementTable brdf;
   brdf.rows.resize(3);
-  EXPECT_THROW(FitHoles(brdf, texture, HolesFitOptions()), InputError);
-  MeasurementTable transmittance = brdf;
-  transmittance.quantity = Quantity::kTransmittance;
-  HolesFitOptions extension;  // needs the run counts, absent here
-  EXPECT_THROW(FitHoles(transmittance, texture, extension), InputError);
-  HolesFitOptions bad_level;
-  bad_level.method = HoleMethod::kAlgorithm31;
-  bad_level.level = 7;
-  EXPECT_THROW(FitHoles(transmittance, texture, bad_level), InputError);
+  EXPECT_THROW(FitHoles(brdf, tile, HolesFitOptions()), InputError);
+  // The extension needs the run counts, absent here; the mask's pyramid
+  // has 2 levels.
+  EXPECT_THROW(HolesTileOf(texture, HoleMethod::kExtension), InputError);
+  EXPECT_THROW(HolesTileOf(texture, HoleMethod::kAlgorithm31, 7), InputError);
 }
 
 }  // namespace

@@ -97,48 +97,56 @@ TEST(HolesParamsTest, ArrayRoundTripAndRanges) {
   HolesParams p;
   p.thickness_texels = 2.5;
   p.wall_color = glm::dvec3(0.1, 0.2, 0.3);
-  double x[HolesParams::kSize];
+  ASSERT_EQ(FlatSize(p), 4);
+  double x[4];
   ToArray(p, x);
-  const HolesParams back = HolesParamsFromArray(x);
+  HolesParams back;
+  FromArray(x, &back);
   EXPECT_EQ(back.thickness_texels, 2.5);
   EXPECT_EQ(back.wall_color, p.wall_color);
-  EXPECT_EQ(ValidateHolesParams(p), "");
+  EXPECT_EQ(ValidateParams(p), "");
   p.thickness_texels = 0.0;
-  ExpectHas(ValidateHolesParams(p), {"thickness_texels"});
+  ExpectHas(ValidateParams(p), {"thickness_texels"});
   p.thickness_texels = 1.0;
   p.wall_color.y = 1.5;
-  ExpectHas(ValidateHolesParams(p), {"wall_color", "component 1"});
+  ExpectHas(ValidateParams(p), {"wall_color", "component 1"});
 }
 
 TEST(HolesParamsTest, FileRoundTripAndErrors) {
   const fs::path dir = TestDir();
-  HolesParamFile file;
-  file.params.thickness_texels = 1.0 / 3.0;
-  file.params.wall_color = glm::dvec3(0.25, 0.5, 0.75);
-  file.mask = "net.png";
-  file.threshold = 0.4;
-  file.method = "alg31";
+  ParamFile file;
+  HolesModel model;
+  model.params.thickness_texels = 1.0 / 3.0;
+  model.params.wall_color = glm::dvec3(0.25, 0.5, 0.75);
+  file.params = model;
+  file.holes.path = "net.png";
+  file.holes.threshold = 0.4;
+  file.holes.method = HoleMethod::kAlgorithm31;
   file.fit_json = "{\"rms\":0.01}";
   const std::string path = (dir / "p.json").string();
-  WriteHolesParamFile(file, path);
-  const HolesParamFile back = ReadHolesParamFile(path);
-  EXPECT_EQ(back.params.thickness_texels, 1.0 / 3.0);
-  EXPECT_EQ(back.params.wall_color, file.params.wall_color);
-  EXPECT_EQ(back.mask, "net.png");
-  EXPECT_EQ(back.threshold, 0.4);
-  EXPECT_EQ(back.method, "alg31");
+  WriteParamFile(file, path);
+  const ParamFile back = ReadParamFile(path);
+  const HolesModel& read = ModelOf<HolesModel>(back, path);
+  EXPECT_EQ(read.params.thickness_texels, 1.0 / 3.0);
+  EXPECT_EQ(read.params.wall_color, model.params.wall_color);
+  EXPECT_EQ(back.holes.path, "net.png");
+  EXPECT_EQ(back.holes.threshold, 0.4);
+  EXPECT_EQ(back.holes.method, HoleMethod::kAlgorithm31);
   EXPECT_EQ(back.fit_json, "{\"rms\":0.01}");
+  // Read without its mask, the model has no tile: nothing can evaluate it.
+  EXPECT_EQ(read.tile, nullptr);
+  ExpectHas(ValidateModel(back.params), {"needs its mask"});
   // A grey wall colour may be one number; the rest is optional.
-  const HolesParamFile grey = ParseHolesParamFile(
+  const ParamFile grey = ParseParamFile(
       "{\"model\": \"holes\", \"thickness_texels\": 2, \"wall_color\": "
       "0.5}",
       "g.json");
-  EXPECT_EQ(grey.params.wall_color, glm::dvec3(0.5));
+  EXPECT_EQ(std::get<HolesModel>(grey.params).params.wall_color,
+            glm::dvec3(0.5));
   const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
-      {"{\"model\": \"thread\", \"thickness_texels\": 1}", {"'model'"}},
       {"{\"model\": \"holes\"}", {"'thickness_texels'", "missing"}},
       {"{\"model\": \"holes\", \"thickness_texels\": -1}",
-       {"'thickness_texels'", "(0, 1e4]"}},
+       {"'thickness_texels'", "(0, 10000]"}},
       {"{\"model\": \"holes\", \"thickness_texels\": 1, \"wall_color\": "
        "[1, 2]}",
        {"'wall_color'"}},
@@ -153,15 +161,12 @@ TEST(HolesParamsTest, FileRoundTripAndErrors) {
     std::vector<std::string> all = pieces;
     all.push_back("b.json");
     const std::string message =
-        ErrorOf([&] { ParseHolesParamFile(text, "b.json"); });
+        ErrorOf([&] { ParseParamFile(text, "b.json"); });
     for (const std::string& piece : all) {
       EXPECT_NE(message.find(piece), std::string::npos)
           << "'" << piece << "' not in: " << message;
     }
   }
-  // The general reader points holes files to their command.
-  ExpectHas(ErrorOf([&] { ReadParamFile(path); }),
-            {"p.json", "clothfit holes eval"});
 }
 
 }  // namespace

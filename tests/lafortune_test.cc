@@ -148,12 +148,12 @@ TEST(LafortuneFit, NoiseFreeDataRecoveredAtHeldOutDirections) {
   options.lut_threshold = 1e-12;  // converge fully
   options.max_alternations = 60;
   const LafortuneFitResult r = FitLafortune(AllSamples(table), options);
-  ASSERT_TRUE(r.usable) << r.message;
+  ASSERT_TRUE(r.report.usable) << r.report.message;
   // Held-out lights (not among the fitted ones) at every stored view, and
   // held-out views (interpolated T) compared with the truth's
   // interpolation.
   const std::vector<glm::dvec3> lights = Hemisphere(7, 0.37);
-  EXPECT_LT(WorstRelativeError(r.model, truth, lights, views), 1e-6);
+  EXPECT_LT(WorstRelativeError(r.params, truth, lights, views), 1e-6);
 }
 
 // A texel whose average normal is tilted: the table carries the normal,
@@ -169,14 +169,14 @@ TEST(LafortuneFit, TiltedTexelFrameFromNormalColumnsIsRecovered) {
   options.lut_threshold = 1e-12;
   options.max_alternations = 60;
   const LafortuneFitResult r = FitLafortune(AllSamples(table), options);
-  ASSERT_TRUE(r.usable) << r.message;
-  EXPECT_NEAR(glm::length(r.model.normal - truth.normal), 0.0, 1e-12);
+  ASSERT_TRUE(r.report.usable) << r.report.message;
+  EXPECT_NEAR(glm::length(r.params.normal - truth.normal), 0.0, 1e-12);
   const std::vector<glm::dvec3> lights = Hemisphere(5, 0.37);
-  EXPECT_LT(WorstRelativeError(r.model, truth, lights, views), 1e-6);
+  EXPECT_LT(WorstRelativeError(r.params, truth, lights, views), 1e-6);
   // The same data fitted in the surface frame cannot match it.
   table.has_normal = false;
   const LafortuneFitResult flat = FitLafortune(AllSamples(table), options);
-  EXPECT_GT(flat.relative_rms, 100.0 * r.relative_rms + 1e-6);
+  EXPECT_GT(flat.report.relative_rms, 100.0 * r.report.relative_rms + 1e-6);
 }
 
 // Daubert et al. 2001, Fig. 5: on virtual-gonioreflectometer data the
@@ -197,10 +197,10 @@ TEST(LafortuneGonio, LookupTableLowersTheViewColourErrorByAtLeast30Percent) {
   const LafortuneMipResult b = FitLafortuneMip(table, without);
   double view_with = 0.0, view_without = 0.0, rms_with = 0.0, rms_without = 0.0;
   for (size_t t = 0; t < a.levels[0].texels.size(); ++t) {
-    view_with += a.levels[0].texels[t].view_relative_rms;
-    view_without += b.levels[0].texels[t].view_relative_rms;
-    rms_with += a.levels[0].texels[t].relative_rms;
-    rms_without += b.levels[0].texels[t].relative_rms;
+    view_with += a.levels[0].texels[t].report.view_relative_rms;
+    view_without += b.levels[0].texels[t].report.view_relative_rms;
+    rms_with += a.levels[0].texels[t].report.relative_rms;
+    rms_without += b.levels[0].texels[t].report.relative_rms;
   }
   EXPECT_LT(view_with, 0.7 * view_without);
   EXPECT_LT(rms_with, 0.97 * rms_without);
@@ -210,7 +210,8 @@ TEST(LafortuneGonio, LookupTableLowersTheViewColourErrorByAtLeast30Percent) {
   diffuse_only.fit.lobes = 0;
   const LafortuneMipResult c = FitLafortuneMip(table, diffuse_only);
   double rms_diffuse = 0.0;
-  for (const TexelFit& t : c.levels[0].texels) rms_diffuse += t.relative_rms;
+  for (const LafortuneFitResult& t : c.levels[0].texels)
+    rms_diffuse += t.report.relative_rms;
   EXPECT_LE(rms_without, rms_diffuse);
 }
 
@@ -228,9 +229,9 @@ TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
   warm.warm_starts = {&poor, &truth, &one_lobe};
   const LafortuneFitResult a = FitLafortune(samples, cold);
   const LafortuneFitResult b = FitLafortune(samples, warm);
-  ASSERT_TRUE(b.usable);
-  EXPECT_LT(b.iterations, a.iterations / 2);
-  EXPECT_LE(b.relative_rms, 1e-9);
+  ASSERT_TRUE(b.report.usable);
+  EXPECT_LT(b.report.iterations, a.report.iterations / 2);
+  EXPECT_LE(b.report.relative_rms, 1e-9);
 }
 
 // A given start (fit --init): used when its lobe count is the one fitted,
@@ -243,10 +244,10 @@ TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
   given.start = &truth;
   const LafortuneFitResult a = FitLafortune(samples, cold);
   const LafortuneFitResult b = FitLafortune(samples, given);
-  ASSERT_TRUE(b.usable);
-  EXPECT_LT(b.iterations, a.iterations / 2);
-  EXPECT_LE(b.relative_rms, 1e-9);
-  EXPECT_LE(b.final_cost, 1e-18);
+  ASSERT_TRUE(b.report.usable);
+  EXPECT_LT(b.report.iterations, a.report.iterations / 2);
+  EXPECT_LE(b.report.relative_rms, 1e-9);
+  EXPECT_LE(b.report.final_cost, 1e-18);
 
   // One pass (no T update): the lookup table is the start's.
   LafortuneModel marked = truth;
@@ -254,12 +255,12 @@ TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
   LafortuneFitOptions one_pass;
   one_pass.max_alternations = 1;
   one_pass.start = &marked;
-  EXPECT_EQ(FitLafortune(samples, one_pass).model.lut.color, marked.lut.color);
+  EXPECT_EQ(FitLafortune(samples, one_pass).params.lut.color, marked.lut.color);
   // Other views: T starts at 1.
   LafortuneModel elsewhere = marked;
   for (glm::dvec3& v : elsewhere.lut.views) v = glm::normalize(v + 0.01);
   one_pass.start = &elsewhere;
-  for (const glm::dvec3& c : FitLafortune(samples, one_pass).model.lut.color) {
+  for (const glm::dvec3& c : FitLafortune(samples, one_pass).params.lut.color) {
     EXPECT_EQ(c, glm::dvec3(1.0));
   }
   // Another lobe count: the paper's start, as without one.
@@ -268,8 +269,8 @@ TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
   LafortuneFitOptions ignored;
   ignored.start = &one_lobe;
   const LafortuneFitResult c = FitLafortune(samples, ignored);
-  EXPECT_EQ(c.iterations, a.iterations);
-  EXPECT_EQ(c.final_cost, a.final_cost);
+  EXPECT_EQ(c.report.iterations, a.report.iterations);
+  EXPECT_EQ(c.report.final_cost, a.report.final_cost);
 }
 
 // Convergence: the alternation stops because T settled, or is reported as
@@ -282,25 +283,25 @@ TEST(LafortuneFit, ConvergenceAndFinalCostAreReported) {
   capped.lut_threshold = 0.0;  // never met
   capped.max_alternations = 3;
   const LafortuneFitResult r = FitLafortune(samples, capped);
-  ASSERT_TRUE(r.usable);
-  EXPECT_FALSE(r.converged);
-  EXPECT_EQ(r.alternations, 3);
-  EXPECT_NE(r.termination.find("alternation cap (3)"), std::string::npos)
-      << r.termination;
+  ASSERT_TRUE(r.report.usable);
+  EXPECT_FALSE(r.report.converged);
+  EXPECT_EQ(r.report.alternations, 3);
+  EXPECT_NE(r.report.termination.find("alternation cap (3)"), std::string::npos)
+      << r.report.termination;
   double cost = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const glm::dvec3 d =
-        LafortuneRho(r.model, samples.l[i], samples.v[i]) - samples.value[i];
+        LafortuneRho(r.params, samples.l[i], samples.v[i]) - samples.value[i];
     cost += 0.5 * glm::dot(samples.weight[i] * d, d);
   }
-  EXPECT_NEAR(r.final_cost, cost, 1e-9 * cost + 1e-15);
+  EXPECT_NEAR(r.report.final_cost, cost, 1e-9 * cost + 1e-15);
 
   const LafortuneFitResult settled = FitLafortune(samples, {});
-  EXPECT_TRUE(settled.converged);
-  EXPECT_EQ(settled.termination, "lookup table converged");
+  EXPECT_TRUE(settled.report.converged);
+  EXPECT_EQ(settled.report.termination, "lookup table converged");
   LafortuneFitOptions no_lut;
   no_lut.lookup_table = false;
-  EXPECT_TRUE(FitLafortune(samples, no_lut).converged);
+  EXPECT_TRUE(FitLafortune(samples, no_lut).report.converged);
 }
 
 TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
@@ -309,8 +310,8 @@ TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
   const TexelSamples samples = AllSamples(LafortuneTable(truth, views, views));
   LafortuneFitOptions with, without;
   without.lookup_table = false;
-  const double e_with = FitLafortune(samples, with).relative_rms;
-  const double e_without = FitLafortune(samples, without).relative_rms;
+  const double e_with = FitLafortune(samples, with).report.relative_rms;
+  const double e_without = FitLafortune(samples, without).report.relative_rms;
   EXPECT_LT(e_with, 0.5 * e_without);
 }
 
@@ -319,8 +320,8 @@ TEST(LafortuneFit, EmptyAndDegenerateTexelsGiveFiniteResults) {
   // No samples at all.
   TexelSamples empty;
   const LafortuneFitResult r0 = FitLafortune(empty, options);
-  EXPECT_FALSE(r0.usable);
-  EXPECT_FALSE(r0.message.empty());
+  EXPECT_FALSE(r0.report.usable);
+  EXPECT_FALSE(r0.report.message.empty());
   // All-zero values: a zero model, usable, nothing NaN.
   const std::vector<glm::dvec3> views = Hemisphere(3);
   LafortuneModel zero = TruthModel(views);
@@ -328,17 +329,17 @@ TEST(LafortuneFit, EmptyAndDegenerateTexelsGiveFiniteResults) {
   zero.params.lobes.clear();
   const LafortuneFitResult r1 =
       FitLafortune(AllSamples(LafortuneTable(zero, views, views)), options);
-  EXPECT_TRUE(r1.usable);
-  EXPECT_TRUE(std::isfinite(r1.relative_rms));
-  for (const glm::dvec3& t : r1.model.lut.color) {
+  EXPECT_TRUE(r1.report.usable);
+  EXPECT_TRUE(std::isfinite(r1.report.relative_rms));
+  for (const glm::dvec3& t : r1.params.lut.color) {
     EXPECT_TRUE(std::isfinite(t.x + t.y + t.z));
   }
   // A single sample.
   MeasurementTable one =
       LafortuneTable(TruthModel(views), {views[0]}, {views[1]});
   const LafortuneFitResult r2 = FitLafortune(AllSamples(one), options);
-  EXPECT_TRUE(std::isfinite(r2.rms));
-  const glm::dvec3 v = LafortuneRho(r2.model, views[0], views[1]);
+  EXPECT_TRUE(std::isfinite(r2.report.rms));
+  const glm::dvec3 v = LafortuneRho(r2.params, views[0], views[1]);
   EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
 }
 
@@ -383,20 +384,20 @@ TEST(LafortuneMip, EmptyViewsAndTransparentTexelsGiveClearResults) {
   }
   table.rows = kept;
   const LafortuneMipResult r = FitLafortuneMip(table, LafortuneMipOptions());
-  const TexelFit& holed = r.levels[0].texels[0];
-  const TexelFit& clear = r.levels[0].texels[1];
-  ASSERT_TRUE(holed.usable) << holed.message;
-  ASSERT_TRUE(clear.usable) << clear.message;
+  const LafortuneFitResult& holed = r.levels[0].texels[0];
+  const LafortuneFitResult& clear = r.levels[0].texels[1];
+  ASSERT_TRUE(holed.report.usable) << holed.report.message;
+  ASSERT_TRUE(clear.report.usable) << clear.report.message;
   const size_t v0 =
       std::find(r.views.begin(), r.views.end(), missing_view) - r.views.begin();
   ASSERT_LT(v0, r.views.size());
-  EXPECT_EQ(holed.model.lut.color[v0], glm::dvec3(1.0));
-  EXPECT_EQ(holed.model.lut.alpha[v0], 1.0);
-  EXPECT_TRUE(std::isfinite(holed.relative_rms));
+  EXPECT_EQ(holed.params.lut.color[v0], glm::dvec3(1.0));
+  EXPECT_EQ(holed.params.lut.alpha[v0], 1.0);
+  EXPECT_TRUE(std::isfinite(holed.report.relative_rms));
   for (size_t v = 0; v < r.views.size(); ++v) {
-    EXPECT_EQ(clear.model.lut.alpha[v], 0.0);
+    EXPECT_EQ(clear.params.lut.alpha[v], 0.0);
     for (const glm::dvec3& l : r.views) {
-      const glm::dvec3 m = LafortuneRho(clear.model, l, r.views[v]);
+      const glm::dvec3 m = LafortuneRho(clear.params, l, r.views[v]);
       EXPECT_TRUE(std::isfinite(m.x + m.y + m.z));
       EXPECT_LT(glm::length(m), 1e-9);
     }
@@ -427,22 +428,23 @@ TEST(LafortuneMip, GroupFitEqualsDirectFitOfPooledSamples) {
   for (int y = 0; y <= 1; ++y) {
     for (int x = 2; x <= 3; ++x) {
       direct_options.warm_starts.push_back(
-          &r.levels[0].texels[y * 4 + x].model);
+          &r.levels[0].texels[y * 4 + x].params);
     }
   }
   const LafortuneFitResult direct = FitLafortune(
       CollectSamples(table, ViewIndex(table), rows, nullptr), direct_options);
-  const TexelFit& group = r.levels[1].texels[0 * 2 + 1];
-  EXPECT_EQ(group.samples, static_cast<int>(rows.size()));
+  const LafortuneFitResult& group = r.levels[1].texels[0 * 2 + 1];
+  EXPECT_EQ(group.report.rows, static_cast<int>(rows.size()));
   double rms = 0.0, relative_rms = 0.0;
-  LafortuneErrors(direct.model, table, ViewIndex(table), rows, &rms,
+  LafortuneErrors(direct.params, table, ViewIndex(table), rows, &rms,
                   &relative_rms);
-  EXPECT_NEAR(group.relative_rms, relative_rms, 1e-9 + 1e-9 * relative_rms);
+  EXPECT_NEAR(group.report.relative_rms, relative_rms,
+              1e-9 + 1e-9 * relative_rms);
   const std::vector<glm::dvec3> probe = Hemisphere(3, 0.21);
   for (const glm::dvec3& l : probe) {
     for (const glm::dvec3& v : probe) {
-      const glm::dvec3 a = LafortuneRho(group.model, l, v);
-      const glm::dvec3 b = LafortuneRho(direct.model, l, v);
+      const glm::dvec3 a = LafortuneRho(group.params, l, v);
+      const glm::dvec3 b = LafortuneRho(direct.params, l, v);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-9 * (1 + b[c]));
     }
   }
@@ -478,8 +480,8 @@ TEST(LafortuneMip, MergingRepeatedPairsLeavesTheFitUnchanged) {
   const std::vector<glm::dvec3> probe = Hemisphere(4, 0.3);
   for (const glm::dvec3& l : probe) {
     for (const glm::dvec3& v : probe) {
-      const glm::dvec3 x = LafortuneRho(a.model, l, v);
-      const glm::dvec3 y = LafortuneRho(b.model, l, v);
+      const glm::dvec3 x = LafortuneRho(a.params, l, v);
+      const glm::dvec3 y = LafortuneRho(b.params, l, v);
       // Equal up to where the solver stops: its tolerances are relative to
       // the cost, which differs by the constant within-pair variance, and
       // the alternation ends on a flat valley (T and f1 trade scale); seen:
@@ -500,10 +502,10 @@ TEST(LafortuneMip, ResultsDoNotDependOnTheThreadCount) {
   ASSERT_EQ(a.levels.size(), 2u);  // 3x2 -> 1x1 (ROUND_DOWN)
   for (size_t l = 0; l < a.levels.size(); ++l) {
     for (size_t t = 0; t < a.levels[l].texels.size(); ++t) {
-      EXPECT_EQ(a.levels[l].texels[t].relative_rms,
-                b.levels[l].texels[t].relative_rms);
-      EXPECT_EQ(a.levels[l].texels[t].model.params.diffuse,
-                b.levels[l].texels[t].model.params.diffuse);
+      EXPECT_EQ(a.levels[l].texels[t].report.relative_rms,
+                b.levels[l].texels[t].report.relative_rms);
+      EXPECT_EQ(a.levels[l].texels[t].params.params.diffuse,
+                b.levels[l].texels[t].params.params.diffuse);
     }
   }
 }
@@ -520,8 +522,8 @@ TEST(LafortuneMip, ToleranceChoosesTheSmallestSufficientLobeCount) {
   LafortuneMipOptions options;
   options.tolerance = 1e-6;
   const LafortuneMipResult r = FitLafortuneMip(table, options);
-  EXPECT_EQ(r.levels[0].texels[0].lobes, 0);
-  EXPECT_LE(r.levels[0].texels[0].relative_rms, 1e-6);
+  EXPECT_EQ(r.levels[0].texels[0].params.params.lobes.size(), 0u);
+  EXPECT_LE(r.levels[0].texels[0].report.relative_rms, 1e-6);
 }
 
 TEST(LafortuneMip, ChannelsRoundTripThroughTheParamMipmapLayout) {
@@ -542,7 +544,7 @@ TEST(LafortuneMip, ChannelsRoundTripThroughTheParamMipmapLayout) {
   const ParamMipmap m = ToParamMipmap(r);
   ASSERT_EQ(m.levels.size(), r.levels.size());
   const LafortuneModel back = TexelFromParamMipmap(m, 0, 1, 1);
-  const LafortuneModel& fitted = r.levels[0].texels[1 * 2 + 1].model;
+  const LafortuneModel& fitted = r.levels[0].texels[1 * 2 + 1].params;
   EXPECT_NEAR(glm::length(back.normal - glm::normalize(glm::dvec3(0.2, 0, 1))),
               0.0, 1e-7);
   // The 1 x 1 level pools all four: the average of their normals.

@@ -60,14 +60,14 @@ TEST(LinearSolver, ThreadFitsRecoverTheTruthWithEverySolver) {
   ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
   const ThreadParams truth = satin.threads[0].params;
   const MeasurementTable table = NoisyTable(truth, 0.0, 7, 600);
-  std::vector<double> want(ThreadParams::kSize);
+  std::vector<double> want(FlatSize(truth));
   ToArray(truth, want.data());
   for (LinearSolver s : AllLinearSolvers()) {
     ThreadFitOptions options;
     options.solver.linear_solver = s;
     const ThreadFitResult r = FitThread(table, options);
     EXPECT_TRUE(r.report.converged) << LinearSolverName(s) << r.report.message;
-    std::vector<double> got(ThreadParams::kSize);
+    std::vector<double> got(FlatSize(r.params));
     ToArray(r.params, got.data());
     ExpectNear(got, want, "thread, " + LinearSolverName(s));
   }
@@ -78,14 +78,14 @@ TEST(LinearSolver, SlabFitsRecoverTheTruthWithEverySolver) {
   truth.tau = glm::dvec3(0.05);
   truth.albedo = glm::dvec3(0.4, 0.3, 0.2);
   const MeasurementTable table = NoisyTable(truth, 0.0, 11, 600);
-  std::vector<double> want(SlabParams::kSize);
+  std::vector<double> want(FlatSize(truth));
   ToArray(truth, want.data());
   for (LinearSolver s : AllLinearSolvers()) {
     SlabFitOptions options;
     options.solver.linear_solver = s;
     const SlabFitResult r = FitSlab({table}, options);
     EXPECT_TRUE(r.report.converged) << LinearSolverName(s) << r.report.message;
-    std::vector<double> got(SlabParams::kSize);
+    std::vector<double> got(FlatSize(r.params));
     ToArray(r.params, got.data());
     ExpectNear(got, want, "slab, " + LinearSolverName(s));
   }
@@ -119,12 +119,12 @@ TEST(LinearSolver, LafortuneFitsRecoverTheTruthWithEverySolver) {
     options.max_iterations = 200;
     options.linear_solver = s;
     const LafortuneFitResult r = FitLafortune(samples, options);
-    ASSERT_TRUE(r.usable) << LinearSolverName(s) << r.message;
-    ASSERT_EQ(r.model.params.lobes.size(), 1u);
+    ASSERT_TRUE(r.report.usable) << LinearSolverName(s) << r.report.message;
+    ASSERT_EQ(r.params.params.lobes.size(), 1u);
     for (int c = 0; c < 3; ++c) {
-      const LafortuneLobe& got = r.model.params.lobes[0];
+      const LafortuneLobe& got = r.params.params.lobes[0];
       ExpectNear(
-          {r.model.params.diffuse[c], got.cx[c], got.cy[c], got.cz[c],
+          {r.params.params.diffuse[c], got.cx[c], got.cy[c], got.cz[c],
            got.n[c]},
           {truth.diffuse[c], lobe.cx[c], lobe.cy[c], lobe.cz[c], lobe.n[c]},
           "lafortune, " + LinearSolverName(s));

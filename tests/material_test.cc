@@ -116,14 +116,14 @@ LafortuneMipResult DiffuseMip() {
   LafortuneLevel base;
   base.width = base.height = 2;
   for (int i = 0; i < 4; ++i) {
-    TexelFit t;
-    t.model.params.diffuse = glm::dvec3(0.1 * (i + 1), 0.05, 0.5);
+    LafortuneFitResult t;
+    t.params.params.diffuse = glm::dvec3(0.1 * (i + 1), 0.05, 0.5);
     base.texels.push_back(t);
   }
   LafortuneLevel top;
   top.width = top.height = 1;
-  TexelFit t;
-  t.model.params.diffuse = glm::dvec3(0.25, 0.05, 0.5);
+  LafortuneFitResult t;
+  t.params.params.diffuse = glm::dvec3(0.25, 0.05, 0.5);
   top.texels.push_back(t);
   r.levels = {base, top};
   return r;
@@ -161,7 +161,7 @@ TEST(Material, LevelReaderMatchesTheTexelReaderAndNamesMissingChannels) {
   r.views = {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(1, 0, 1))};
   for (LafortuneLevel& level : r.levels) {
     for (size_t i = 0; i < level.texels.size(); ++i) {
-      LafortuneModel& m = level.texels[i].model;
+      LafortuneModel& m = level.texels[i].params;
       m.params.lobes.assign(i % 3, LafortuneLobe());
       if (!m.params.lobes.empty()) m.params.lobes[0].n = glm::dvec3(i + 2.0);
       m.lut.views = r.views;

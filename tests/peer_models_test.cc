@@ -134,9 +134,8 @@ TEST(PeerModels, HolesMatchClothfitsTileEvaluation) {
   for (double theta : {0.0, 20.0, 45.0, 70.0}) {
     for (double phi : {0.0, 30.0, 100.0, 200.0, 290.0}) {
       TableRow row;
-      row.wo = DirectionFromAngles(theta * kRadiansPerDegree,
-                                   phi * kRadiansPerDegree);
-      row.value = HolesTransmittance(
+      row.wo = DirectionFromAngles(Radians(theta), Radians(phi));
+      row.value = TransmittanceOfRatios(
           p, EvaluateTile(texture, HoleMethod::kAlgorithm31, top,
                           ViewOffset(p.thickness_texels, row.wo)));
       table.rows.push_back(row);

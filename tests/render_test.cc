@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "fitting/lafortune_mip.h"
+#include "holes/hole_texture.h"
+#include "io/lafortune_mipmap.h"
 #include "io/mask_io.h"
 #include "io/param_mipmap.h"
 #include "render/preview.h"
@@ -122,20 +123,18 @@ TEST(Render, CylinderPanelsTurnTheWarpVerticalHorizontalDiagonal) {
 // A 2 x 2 level 0 of diffuse texels (red 0.1, 0.2 / 0.3, 0.4 by row) and a
 // 1 x 1 level 1 (red 0.25), written as a parameter mip map and loaded.
 Material DiffuseMipmap(const fs::path& dir) {
-  LafortuneMipResult r;
-  LafortuneLevel base, top;
+  LafortuneTexelMap base, top;
   base.width = base.height = 2;
   for (int i = 0; i < 4; ++i) {
-    TexelFit t;
-    t.model.params.diffuse = glm::dvec3(0.1 * (i + 1), 0.05, 0.5);
+    LafortuneModel t;
+    t.params.diffuse = glm::dvec3(0.1 * (i + 1), 0.05, 0.5);
     base.texels.push_back(t);
   }
   top.width = top.height = 1;
   top.texels.resize(1);
-  top.texels[0].model.params.diffuse = glm::dvec3(0.25, 0.05, 0.5);
-  r.levels = {base, top};
+  top.texels[0].params.diffuse = glm::dvec3(0.25, 0.05, 0.5);
   const std::string path = (dir / "diffuse.exr").string();
-  WriteParamMipmap(ToParamMipmap(r), path);
+  WriteParamMipmap(ToParamMipmap({base, top}, {}), path);
   return Material::Load(path);
 }
 
@@ -224,16 +223,15 @@ TEST(Render, UniformMipmapRendersLikeItsModel) {
   lobe.cz = glm::dvec3(0.9);
   lobe.n = glm::dvec3(12.0);
   model.params.lobes = {lobe};
-  LafortuneMipResult r;
+  std::vector<LafortuneTexelMap> levels;
   for (int size : {4, 2, 1}) {
-    LafortuneLevel level;
+    LafortuneTexelMap level;
     level.width = level.height = size;
-    level.texels.resize(size_t(size) * size);
-    for (TexelFit& t : level.texels) t.model = model;
-    r.levels.push_back(level);
+    level.texels.assign(size_t(size) * size, model);
+    levels.push_back(level);
   }
   const fs::path dir = TestDir();
-  WriteParamMipmap(ToParamMipmap(r), (dir / "uniform.exr").string());
+  WriteParamMipmap(ToParamMipmap(levels, {}), (dir / "uniform.exr").string());
   const Material m = Material::Load((dir / "uniform.exr").string());
   const PreviewOptions o = Small();
   const PreviewImage textured = RenderCylinders(MipmapRho(m, 0.8), o);
@@ -282,16 +280,17 @@ TEST(Render, SlabPanelsShowTheBackdropThroughThinAndHideItBehindThick) {
 TEST(Render, HolesPanelsLetTheBackdropThroughByTheirTransmittance) {
   PreviewOptions o = Small();
   o.tilt_deg = 30.0;
-  HolesParams params;
-  // Transmittance cos(theta_o), no opaque part: backdrop * cos(tilt).
-  const PreviewImage image = RenderHoles(
-      params,
-      [](const glm::dvec3& wo) {
-        HoleRatios r;
-        r.transparent = wo.z;
-        return r;
-      },
-      o);
+  // Lit from behind: the column tops (cos_i = 0) add no light.
+  o.light = glm::dvec3(0.0, 0.0, -1.0);
+  // Opaque and open columns alternating along x, h = 1: a panel tilted by t
+  // about y sees the holes at the view offset (tan t, 0), so Algorithm 3.1
+  // gives transparent = (1 - min(tan t, 1)) / 2 (half the texels open, a
+  // wall of each open texel in the way of a fraction tan t of it).
+  HolesModel model;
+  model.params.thickness_texels = 1.0;
+  model.tile = std::make_shared<const HolesTile>(HolesTileOf(
+      AnalyzeMask(MaskFromRows({"#."}), false), HoleMethod::kAlgorithm31));
+  const PreviewImage image = RenderHoles(model, o);
   ASSERT_EQ(image.width, 3 * o.size);
   const int centre = o.size / 2;
   for (int panel = 0; panel < 3; ++panel) {
@@ -301,7 +300,9 @@ TEST(Render, HolesPanelsLetTheBackdropThroughByTheirTransmittance) {
         (int(std::floor(p.x / 0.3)) + int(std::floor(p.y / 0.3))) % 2 == 0
             ? kCheckerLight
             : kCheckerDark;
-    EXPECT_NEAR(v.x, backdrop * std::cos(Radians(30.0 * panel)), 1e-12);
+    const double transparent =
+        0.5 * (1.0 - std::min(std::tan(Radians(30.0 * panel)), 1.0));
+    EXPECT_NEAR(v.x, backdrop * transparent, 1e-12);
   }
 }
 

@@ -74,7 +74,7 @@ ThreadParams CaseParams(const std::string& name) {
 }
 
 std::vector<double> AsVector(const ThreadParams& p) {
-  std::vector<double> x(ThreadParams::kSize);
+  std::vector<double> x(kThreadFlatSize);
   ToArray(p, x.data());
   return x;
 }
@@ -126,11 +126,11 @@ void ExpectRecovered(const ThreadFitResult& result, const ThreadParams& truth,
   const std::vector<double> x = AsVector(result.params);
   std::ostringstream misses;
   for (size_t i = 0; i < t.size(); ++i) {
-    EXPECT_EQ(Param(result.report, ThreadParamNames()[i]).value, x[i])
-        << ThreadParamNames()[i];
+    EXPECT_EQ(Param(result.report, FlatNames(ThreadParams())[i]).value, x[i])
+        << FlatNames(ThreadParams())[i];
     if (!(std::abs(x[i] - t[i]) <= rel * Scale(t, i))) {
-      misses << " " << ThreadParamNames()[i] << " (fit " << x[i] << ", true "
-             << t[i] << ", relative error "
+      misses << " " << FlatNames(ThreadParams())[i] << " (fit " << x[i]
+             << ", true " << t[i] << ", relative error "
              << std::abs(x[i] - t[i]) / Scale(t, i) << ")";
     }
   }
@@ -153,7 +153,7 @@ void ExpectWithinNoise(const ThreadFitResult& result, const ThreadParams& truth,
   EXPECT_TRUE(report.converged) << report.termination << " " << report.message;
   EXPECT_EQ(report.identifiability, "");
   for (size_t i = 0; i < t.size(); ++i) {
-    const ParameterReport& p = Param(report, ThreadParamNames()[i]);
+    const ParameterReport& p = Param(report, FlatNames(ThreadParams())[i]);
     if (!p.free) continue;
     const std::string where = label + " " + p.name;
     EXPECT_GT(p.stddev, 0.0) << where << "\n" << FitReportText(report, t);
@@ -190,7 +190,7 @@ void ExpectAllFinite(const ThreadFitResult& result) {
   EXPECT_TRUE(std::isfinite(r.rms)) << r.rms;
   EXPECT_TRUE(std::isfinite(r.relative_rms)) << r.relative_rms;
   EXPECT_TRUE(std::isfinite(r.seconds)) << r.seconds;
-  EXPECT_GE(r.parameters.size(), static_cast<size_t>(ThreadParams::kSize));
+  EXPECT_GE(r.parameters.size(), static_cast<size_t>(kThreadFlatSize));
   for (const ParameterReport& p : r.parameters) {
     EXPECT_TRUE(std::isfinite(p.value)) << p.name;
     EXPECT_TRUE(std::isfinite(p.stddev)) << p.name;
@@ -242,7 +242,7 @@ TEST_P(ThreadRecoveryTest, FarStartsConvergeToTruthOrReportFailure) {
     init.gamma_s_deg = std::min(90.0, init.gamma_s_deg * factor);
     init.gamma_v_deg = std::min(90.0, init.gamma_v_deg * factor);
     init.albedo *= 10.0;
-    ASSERT_EQ(ValidateThreadParams(init), "");
+    ASSERT_EQ(ValidateParams(init), "");
     ThreadFitOptions options;
     options.init = init;
     const ThreadFitResult result = FitThread(table, options);
@@ -385,8 +385,8 @@ TEST(ThreadFitFreeFix, FixKdKeepsItsInitialValueExactly) {
   EXPECT_FALSE(kd.free);
   EXPECT_EQ(kd.value, 0.2137);
   EXPECT_LT(kd.stddev, 0.0);
-  for (int i = 0; i < ThreadParams::kSize; ++i) {
-    const std::string name = ThreadParamNames()[i];
+  for (int i = 0; i < kThreadFlatSize; ++i) {
+    const std::string name = FlatNames(ThreadParams())[i];
     EXPECT_EQ(Param(result.report, name).free, name != "kd") << name;
   }
 }
@@ -404,8 +404,8 @@ TEST(ThreadFitFreeFix, FreeOnlyGammaSFitsOnlyThatParameter) {
   ExpectAllFinite(result);
   const std::vector<double> x0 = AsVector(init);
   const std::vector<double> x = AsVector(result.params);
-  for (int i = 0; i < ThreadParams::kSize; ++i) {
-    const std::string name = ThreadParamNames()[i];
+  for (int i = 0; i < kThreadFlatSize; ++i) {
+    const std::string name = FlatNames(ThreadParams())[i];
     EXPECT_EQ(Param(result.report, name).free, name == "gamma_s_deg") << name;
     if (name != "gamma_s_deg") {
       EXPECT_EQ(x[i], x0[i]) << name;
@@ -465,8 +465,9 @@ TEST(ThreadFitFreeFix, UnknownNamesThrowInputErrorNamingTheName) {
 TEST(ApplyFreeFix, MatchesFullNamesLastPartsAndAlbedo) {
   std::vector<ParameterSpec> specs;
   for (const char* t : {"threads[0].", "threads[1]."}) {
-    for (int i = 0; i < ThreadParams::kSize; ++i) {
-      specs.push_back({std::string(t) + ThreadParamNames()[i], 0.0, 1.0, true});
+    for (int i = 0; i < kThreadFlatSize; ++i) {
+      specs.push_back(
+          {std::string(t) + FlatNames(ThreadParams())[i], 0.0, 1.0, true});
     }
   }
   auto free_names = [&] {

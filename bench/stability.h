@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "charts/bench.h"
+#include "bench/bench.h"
 
 namespace clothfit {
 

@@ -1,4 +1,4 @@
-#include "charts/stability.h"
+#include "bench/stability.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <map>
 #include <sstream>
 
+#include "bench/holes_problem.h"
 #include "charts/chart.h"
-#include "charts/holes_problem.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/cloth_fit.h"
@@ -115,18 +115,18 @@ double HolesRun(const std::string& knob, double level, bool wall, Loss loss,
                       (level > 0.0 ? theta <= level : theta >= -level);
     if (keep) thetas.push_back(theta);
   }
-  HolesFitOptions fit;
-  MeasurementTable table = HolesModelTable(
-      texture, truth, fit.method, fit.level, thetas, {0.0, 90.0, 180.0, 270.0});
-  const MeasurementTable held_out =
-      HolesModelTable(texture, truth, fit.method, fit.level,
-                      {5.0, 25.0, 45.0, 65.0}, {45.0, 135.0, 225.0, 315.0});
+  const HolesTile tile = HolesTileOf(texture);  // the fit's defaults
+  MeasurementTable table =
+      HolesModelTable(tile, truth, thetas, {0.0, 90.0, 180.0, 270.0});
+  const MeasurementTable held_out = HolesModelTable(
+      tile, truth, {5.0, 25.0, 45.0, 65.0}, {45.0, 135.0, 225.0, 315.0});
   Random random(seed);
   const double noise = knob == "noise" ? level : 0.02;
   for (TableRow& r : table.rows) {
     r.value *= std::max(0.0, 1.0 + noise * random.Normal());
     if (knob == "outliers" && random.Uniform() < level) r.value *= 10.0;
   }
+  HolesFitOptions fit;
   fit.solver.loss = loss;
   fit.fit_wall_color = wall;
   if (knob == "start_distance") {  // thickness x factor from the truth
@@ -134,10 +134,9 @@ double HolesRun(const std::string& knob, double level, bool wall, Loss loss,
     start.thickness_texels = truth.thickness_texels * level;
     fit.init = start;
   }  // else the fit's own start (HolesParams(), and its grid), as a user's
-  const HolesFitResult r = FitHoles(table, texture, fit);
+  const HolesFitResult r = FitHoles(table, tile, fit);
   *ok = r.report.usable && r.report.converged;
-  const double e =
-      HolesHeldOutError(r.params, texture, fit.method, fit.level, held_out);
+  const double e = HolesHeldOutError(r.params, tile, held_out);
   return std::isnan(e) ? HUGE_VAL : e;
 }
 

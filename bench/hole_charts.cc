@@ -1,4 +1,4 @@
-#include "holes/hole_charts.h"
+#include "bench/hole_charts.h"
 
 #include <algorithm>
 #include <cmath>

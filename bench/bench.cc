@@ -1,4 +1,4 @@
-#include "charts/bench.h"
+#include "bench/bench.h"
 
 #include <time.h>
 
@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "bench/holes_problem.h"
 #include "charts/chart.h"
-#include "charts/holes_problem.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
@@ -112,8 +112,10 @@ double LargestRelativeError(const std::vector<double>& fitted,
   return worst;
 }
 
-std::vector<double> ThreadValues(const ThreadParams& p) {
-  std::vector<double> x(ThreadParams::kSize);
+// The flat vector of a parameter struct (models/params.h).
+template <typename P>
+std::vector<double> FlatValues(const P& p) {
+  std::vector<double> x(FlatSize(p));
   ToArray(p, x.data());
   return x;
 }
@@ -341,7 +343,7 @@ std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
     out.success = r.report.usable && r.report.converged;
     out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
     out.param_error =
-        LargestRelativeError(ThreadValues(r.params), ThreadValues(truth));
+        LargestRelativeError(FlatValues(r.params), FlatValues(truth));
     return out;
   };
   for (int s : starts) {
@@ -493,9 +495,9 @@ double LevelError(const LafortuneMipResult& r, size_t l,
   double sum = 0.0;
   int n = 0;
   for (size_t i = 0; i < level.texels.size(); ++i) {
-    *usable = *usable && level.texels[i].usable;
+    *usable = *usable && level.texels[i].report.usable;
     double rms = 0.0, rel = 0.0;
-    LafortuneErrors(level.texels[i].model, test, test_views, pooled[i], &rms,
+    LafortuneErrors(level.texels[i].params, test, test_views, pooled[i], &rms,
                     &rel);
     sum += rel;
     ++n;
@@ -641,16 +643,13 @@ std::string BenchSlab(const BenchOptions& o, std::vector<BenchRow>* rows) {
       MakeProblem(truth, o.quick ? 300 : 3000, true, o.seed, o.seed + 3000);
   const MeasurementTable& table = problem.table;
   const std::vector<TableRow>& held_out = problem.held_out;
-  std::vector<double> truth_values(SlabParams::kSize);
-  ToArray(truth, truth_values.data());
+  const std::vector<double> truth_values = FlatValues(truth);
   auto run = [&](const SlabFitOptions& fit) {
     const SlabFitResult r = FitSlab({table}, fit);
     Outcome out;
     out.success = r.report.usable && r.report.converged;
     out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
-    std::vector<double> values(SlabParams::kSize);
-    ToArray(r.params, values.data());
-    out.param_error = LargestRelativeError(values, truth_values);
+    out.param_error = LargestRelativeError(FlatValues(r.params), truth_values);
     return out;
   };
   for (int starts :
@@ -693,10 +692,8 @@ std::string RunHolesPeer(const BenchOptions& o, const MeasurementTable& table,
                          const MeasurementTable& held_out,
                          const HoleTexture& texture, const HolesParams& truth,
                          std::vector<BenchRow>* rows) {
-  HolesFitOptions fit;
-  fit.method = HoleMethod::kAlgorithm31;
-  fit.level = -1;
-  const LevelTexels top = GatherLevel(texture, texture.counts.levels() - 1);
+  const HolesTile tile = HolesTileOf(texture, HoleMethod::kAlgorithm31);
+  const LevelTexels& top = tile.texels;
   auto params_json = [&](const HolesParams& p) {
     nlohmann::json j;
     j["model"] = "holes";
@@ -708,8 +705,8 @@ std::string RunHolesPeer(const BenchOptions& o, const MeasurementTable& table,
   };
   return RunPeer(o, "holes", "scipy least_squares method=alg31 level=top",
                  table, held_out, params_json(HolesParams()),
-                 params_json(truth), FitHoles(table, texture, fit).report,
-                 rows);
+                 params_json(truth),
+                 FitHoles(table, tile, HolesFitOptions()).report, rows);
 }
 
 // Holes: the thickness of a random mask's opaque texels from ray-traced
@@ -729,22 +726,19 @@ std::string BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
   const MeasurementTable held_out = HolesTruthTable(
       mask, truth, thetas, {45.0, 135.0, 225.0, 315.0}, samples);
   for (HoleMethod method : {HoleMethod::kAlgorithm31, HoleMethod::kExtension}) {
-    for (int level : {0, -1}) {
+    for (int level : {0, kTopLevel}) {
       const std::string config = std::string("method=") +
                                  HoleMethodName(method) +
                                  " level=" + (level < 0 ? "top" : "0");
       Say(o, "holes: " + config);
-      HolesFitOptions fit;
-      fit.method = method;
-      fit.level = level;
+      const HolesTile tile = HolesTileOf(texture, method, level);
       BenchRow row = Measure(o, [&]() {
-        const HolesFitResult r = FitHoles(table, texture, fit);
+        const HolesFitResult r = FitHoles(table, tile, HolesFitOptions());
         Outcome out;
         out.success = r.report.usable && r.report.converged;
         // Held out: the fitted thickness's transmittance (the same method)
         // against the ground truth at the other azimuths.
-        out.value_error =
-            HolesHeldOutError(r.params, texture, method, level, held_out);
+        out.value_error = HolesHeldOutError(r.params, tile, held_out);
         out.param_error =
             std::abs(r.params.thickness_texels - truth.thickness_texels) /
             truth.thickness_texels;
@@ -753,8 +747,7 @@ std::string BenchHoles(const BenchOptions& o, std::vector<BenchRow>* rows) {
       row.model = "holes";
       row.config = config;
       row.group = HoleMethodName(method);
-      const HolesFitOptions defaults;
-      row.is_default = method == defaults.method && level == defaults.level;
+      row.is_default = method == HolesTile().method && level == kTopLevel;
       rows->push_back(row);
     }
   }

@@ -1,10 +1,8 @@
-// Speed of the renderer's inner loop (issue 9): Material::F on a preset, a
+// Speed of the renderer's inner loop: Material::F on a preset, a
 // Lafortune file and a parameter mip map, the cloth sampler, and one
 // preview render. Medians and spread:
-//   build/api/material_benchmark --benchmark_repetitions=10
+//   build/benchmarks/material_benchmark --benchmark_repetitions=10
 //     --benchmark_report_aggregates_only=true
-// (Here rather than in benchmarks/ so that the two folders' CMake files
-// stay independent.)
 #include <benchmark/benchmark.h>
 
 #include <random>

@@ -1,0 +1,138 @@
+// The one residual of the least-squares fits (thread, cloth, slab, holes):
+// a model evaluated through models/ with Jets, weighted by
+// fitting/residual_weight.h. A fit supplies an evaluator, a const object
+// shared by all rows with
+//
+//   template <typename T>
+//   Vec3<T> operator()(const T* const* blocks, size_t i) const;
+//
+// the model's value for its row i from the parameter blocks (the same code
+// runs with double for predictions and with Jets for Ceres). Ceres sees one
+// DynamicAutoDiffCostFunction per row over the blocks the fit names, so
+// that any number of blocks (a weave of 1 to 3 threads, with or without
+// its coverage blocks and the scale) needs no code per layout, and blocks
+// held constant cost no derivatives. Includes Ceres: for fitting/*.cc only
+// (not installed).
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <memory>
+#include <vector>
+
+#include "fitting/least_squares.h"
+#include "fitting/residual_weight.h"
+#include "models/math.h"
+
+namespace clothfit {
+
+// One row of a fit: the table row, the quantity it holds and the number
+// of its channels that are residuals (1 or 3).
+struct FitRow {
+  const TableRow* row;
+  Quantity quantity;
+  int channels;
+};
+
+// The blocks a fit's residuals use: indices into LeastSquaresProblem's
+// blocks, and (scale >= 0) the block whose one entry multiplies the model
+// (data on an arbitrary scale).
+struct ResidualBlocks {
+  std::vector<int> used;
+  int scale = -1;  // index into `used`, or -1
+};
+
+template <class Evaluator>
+class ModelResidual {
+ public:
+  // Derivative lanes per pass of DynamicAutoDiffCostFunction: a thread's
+  // seven parameters and the scale in one pass.
+  static constexpr int kStride = 8;
+
+  ModelResidual(std::shared_ptr<const Evaluator> evaluator, size_t index,
+                const FitRow& row, int scale_block)
+      : evaluator_(std::move(evaluator)),
+        index_(index),
+        measured_(row.row->value),
+        scale_(ResidualScale(*row.row)),
+        channels_(row.channels),
+        scale_block_(scale_block) {}
+
+  template <typename T>
+  bool operator()(const T* const* blocks, T* residual) const {
+    Vec3<T> model = (*evaluator_)(blocks, index_);
+    if (scale_block_ >= 0) model *= blocks[scale_block_][0];
+    for (int c = 0; c < channels_; ++c) {
+      residual[c] = WeightedResidual(model[c], measured_[c], scale_[c]);
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(std::shared_ptr<const Evaluator> evaluator,
+                                     size_t index, const FitRow& row,
+                                     const ResidualBlocks& blocks,
+                                     const std::vector<int>& block_sizes) {
+    auto* cost = new ceres::DynamicAutoDiffCostFunction<ModelResidual, kStride>(
+        new ModelResidual(std::move(evaluator), index, row, blocks.scale));
+    for (int b : blocks.used) cost->AddParameterBlock(block_sizes[b]);
+    cost->SetNumResiduals(row.channels);
+    return cost;
+  }
+
+ private:
+  std::shared_ptr<const Evaluator> evaluator_;
+  size_t index_;
+  glm::dvec3 measured_, scale_;
+  int channels_;
+  int scale_block_;
+};
+
+// Sets lsq->add_residuals and lsq->predict for `rows` evaluated by
+// `evaluator` (row i of the evaluator is rows[i]) over `blocks`.
+template <class Evaluator>
+void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
+                       std::vector<FitRow> rows, ResidualBlocks blocks,
+                       LeastSquaresProblem* lsq) {
+  const std::vector<int> sizes = lsq->block_sizes;
+  lsq->add_residuals = [=](const std::vector<double*>& x,
+                           ceres::LossFunction* loss, ceres::Problem* problem) {
+    std::vector<double*> used;
+    for (int b : blocks.used) used.push_back(x[b]);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      problem->AddResidualBlock(ModelResidual<Evaluator>::Create(
+                                    evaluator, i, rows[i], blocks, sizes),
+                                loss, used);
+    }
+  };
+  lsq->predict = [=](const std::vector<double>& x, std::vector<double>* model,
+                     std::vector<double>* measured,
+                     std::vector<const TableRow*>* row_of) {
+    std::vector<const double*> used;
+    std::vector<int> offsets(sizes.size() + 1, 0);
+    for (size_t b = 0; b < sizes.size(); ++b) {
+      offsets[b + 1] = offsets[b] + sizes[b];
+    }
+    for (int b : blocks.used) used.push_back(x.data() + offsets[b]);
+    const double s = blocks.scale >= 0 ? used[blocks.scale][0] : 1.0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const glm::dvec3 m = (*evaluator)(used.data(), i) * s;
+      for (int c = 0; c < rows[i].channels; ++c) {
+        model->push_back(m[c]);
+        measured->push_back(rows[i].row->value[c]);
+        if (row_of) row_of->push_back(rows[i].row);
+      }
+    }
+  };
+}
+
+// One FitRow per row of a table, with the table's quantity and channels.
+inline std::vector<FitRow> TableFitRows(const MeasurementTable& table) {
+  std::vector<FitRow> rows;
+  rows.reserve(table.rows.size());
+  for (const TableRow& row : table.rows) {
+    rows.push_back({&row, table.quantity, table.channels});
+  }
+  return rows;
+}
+
+}  // namespace clothfit
