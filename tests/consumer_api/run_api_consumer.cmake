@@ -1,0 +1,42 @@
+# ctest consumer_api_test (tests/CMakeLists.txt): installs the build tree
+# into a temporary prefix, builds tests/consumer_api against it with
+# find_package(clothfit COMPONENTS api), runs it, and checks with ldd that
+# the executable needs none of the solver's or the image libraries' shared
+# libraries.
+#   cmake -DBUILD_DIR=.. -DWORK_DIR=.. -DSOURCE_DIR=.. -DFITTED=..
+#         -DGENERATOR=.. -P run_api_consumer.cmake
+foreach(var BUILD_DIR WORK_DIR SOURCE_DIR FITTED GENERATOR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_api_consumer.cmake: ${var} is not set")
+  endif()
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
+  endif()
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+run(${WORK_DIR}/build/renderer ${FITTED} ${WORK_DIR})
+
+execute_process(COMMAND ldd ${WORK_DIR}/build/renderer
+  OUTPUT_VARIABLE libraries RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ldd failed (${rc})")
+endif()
+foreach(forbidden ceres opencv OpenImageIO glog gflags lapack blas cholmod
+                  metis)
+  string(TOLOWER "${libraries}" lower)
+  string(TOLOWER "${forbidden}" name)
+  if(lower MATCHES "lib${name}")
+    message(FATAL_ERROR "the api consumer needs lib${forbidden}:\n${libraries}")
+  endif()
+endforeach()
+message(STATUS "api consumer's shared libraries:\n${libraries}")
