@@ -4,19 +4,16 @@
 #include <cmath>
 #include <cstdio>
 
-#include "charts/chart_png.h"
+#include "charts/chart.h"
 #include "charts/heat_map.h"
 #include "data_synthetic/holes_truth.h"
 #include "io/atomic_file.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
 
-std::string Number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", v);
-  return buffer;
-}
+std::string Number(double v) { return text_util::FormatNumber(v, 9); }
 
 glm::dvec3 ViewDirection(double theta_deg, double phi_deg) {
   const double theta = Radians(theta_deg), phi = Radians(phi_deg);
@@ -66,27 +63,30 @@ void WriteAngleChart(const AngleCurve& curve, const std::string& title,
             Number(curve.alg31[i] - curve.truth[i]) + "," +
             Number(curve.extension[i] - curve.truth[i]) + "\n";
   }
-  LineChart chart;
+  ScatterChart chart;
   chart.title = title;
   chart.x_label = "view angle theta (degrees from the normal)";
   chart.y_label = "transmittance";
   chart.y_min = 0.0;
   chart.y_max = 1.0;
+  auto series = [&](const char* name, const std::vector<double>& y,
+                    const Rgb8& colour, bool dashed, bool markers) {
+    ScatterSeries s;
+    s.name = name;
+    for (size_t i = 0; i < curve.theta_deg.size(); ++i) {
+      s.points.push_back({curve.theta_deg[i], y[i], "", false});
+    }
+    s.lines = true;
+    s.dashed = dashed;
+    s.markers = markers;
+    s.colour = colour;
+    return s;
+  };
   chart.series = {
-      {"Algorithm 3.1",
-       curve.theta_deg,
-       curve.alg31,
-       {214, 39, 40},
-       false,
-       false},
-      {"extension",
-       curve.theta_deg,
-       curve.extension,
-       {31, 119, 180},
-       true,
-       false},
-      {"ground truth", curve.theta_deg, curve.truth, {0, 0, 0}, false, true}};
-  WriteLineChartPng(chart, png);
+      series("Algorithm 3.1", curve.alg31, {214, 39, 40}, false, false),
+      series("extension", curve.extension, {31, 119, 180}, true, false),
+      series("ground truth", curve.truth, {0, 0, 0}, false, true)};
+  WriteScatterChartPng(chart, png);
   WriteFileAtomically(csv, text);
 }
 

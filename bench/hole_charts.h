@@ -2,7 +2,7 @@
 // transmittance of a mask versus the view angle (Algorithm 3.1, the
 // extension, the ground truth), and the error of both methods over hole
 // size x thickness for square holes (where each one fails). Each is a PNG
-// (charts/chart_png.h) and the CSV behind it, written atomically.
+// (charts/chart.h) and the CSV behind it, written atomically.
 #pragma once
 
 #include <cstdint>

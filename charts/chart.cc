@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -23,8 +24,15 @@ const cv::Scalar kPalette[] = {{180, 119, 31},  {14, 127, 255}, {44, 160, 44},
                                {34, 189, 188}};
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 
-cv::Scalar SeriesColour(size_t i) {
+cv::Scalar PaletteColour(size_t i) {
   return kPalette[i % (sizeof(kPalette) / sizeof(kPalette[0]))];
+}
+
+// A series' own colour, else the palette's for index i.
+cv::Scalar SeriesColour(const ScatterSeries& series, size_t i) {
+  if (!series.colour) return PaletteColour(i);
+  const Rgb8& c = *series.colour;
+  return cv::Scalar(c[2], c[1], c[0]);
 }
 
 void Text(cv::Mat* image, const std::string& text, cv::Point at,
@@ -32,11 +40,7 @@ void Text(cv::Mat* image, const std::string& text, cv::Point at,
   cv::putText(*image, text, at, kFont, scale, colour, 1, cv::LINE_AA);
 }
 
-std::string Format(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%g", v);
-  return buffer;
-}
+std::string Format(double v) { return text_util::FormatNumber(v, 6); }
 
 // One axis: data range to pixels, linear or log10.
 struct Axis {
@@ -176,6 +180,10 @@ void WriteScatterChartPng(const ScatterChart& spec, const std::string& path) {
   }
   FitAxis(xs, &x);
   FitAxis(ys, &y);
+  if (spec.y_min < spec.y_max) {
+    y.low = y.Unit(spec.y_min);
+    y.high = y.Unit(spec.y_max);
+  }
 
   // Grid, ticks and labels.
   for (double t : x.Ticks()) {
@@ -215,32 +223,53 @@ void WriteScatterChartPng(const ScatterChart& spec, const std::string& path) {
     }
   }
 
-  // Series.
+  // Series, clipped to the plot.
+  cv::Mat plot =
+      image(cv::Rect(x.from, y.to, x.to - x.from + 1, y.from - y.to + 1));
+  const cv::Point origin(x.from, y.to);
+  bool any_highlight = false;
   for (size_t s = 0; s < spec.series.size(); ++s) {
     const ScatterSeries& series = spec.series[s];
-    const cv::Scalar colour = SeriesColour(s);
+    const cv::Scalar colour = SeriesColour(series, s);
     cv::Point previous(-1, -1);
+    int segment = 0;
     for (const ChartPoint& p : series.points) {
       if (!x.Valid(p.x) || !y.Valid(p.y)) continue;
       const cv::Point here(x.Pixel(p.x), y.Pixel(p.y));
-      if (series.lines && previous.x >= 0) {
-        cv::line(image, previous, here, colour, 2, cv::LINE_AA);
+      if (series.lines && previous.x >= 0 &&
+          !(series.dashed && segment++ % 2 == 1)) {
+        cv::line(plot, previous - origin, here - origin, colour, 2,
+                 cv::LINE_AA);
       }
       previous = here;
-      cv::circle(image, here, 4, colour, cv::FILLED, cv::LINE_AA);
-      if (p.highlight) cv::circle(image, here, 11, kRed, 2, cv::LINE_AA);
+      if (series.markers) {
+        cv::circle(plot, here - origin, 4, colour, cv::FILLED, cv::LINE_AA);
+      }
+      if (p.highlight) {
+        cv::circle(image, here, 11, kRed, 2, cv::LINE_AA);
+        any_highlight = true;
+      }
       if (!p.label.empty()) {
         Text(&image, p.label, {here.x + 6, here.y - 6}, 0.35, colour);
       }
     }
     // Legend.
     const int ly = top + 18 + 20 * static_cast<int>(s);
-    cv::circle(image, {x.to + 18, ly - 4}, 5, colour, cv::FILLED, cv::LINE_AA);
+    if (series.lines) {
+      cv::line(image, {x.to + 8, ly - 4}, {x.to + 26, ly - 4}, colour, 2,
+               cv::LINE_AA);
+    }
+    if (series.markers || !series.lines) {
+      cv::circle(image, {x.to + 18, ly - 4}, 5, colour, cv::FILLED,
+                 cv::LINE_AA);
+    }
     Text(&image, series.name, {x.to + 30, ly}, 0.45);
   }
   int ly = top + 18 + 20 * static_cast<int>(spec.series.size()) + 10;
-  cv::circle(image, {x.to + 18, ly - 4}, 9, kRed, 2, cv::LINE_AA);
-  Text(&image, "default", {x.to + 30, ly}, 0.45);
+  if (any_highlight) {
+    cv::circle(image, {x.to + 18, ly - 4}, 9, kRed, 2, cv::LINE_AA);
+    Text(&image, "default", {x.to + 30, ly}, 0.45);
+  }
   if (spec.pareto) {
     ly += 22;
     cv::circle(image, {x.to + 18, ly - 4}, 8, kFrontColour, 1, cv::LINE_AA);
@@ -299,13 +328,13 @@ void WritePolarPlotPng(const std::vector<PolarPanel>& panels,
         continue;
       }
       cv::line(image, at(p.model_angle_deg[k - 1], p.model_value[k - 1]),
-               at(p.model_angle_deg[k], p.model_value[k]), SeriesColour(0), 2,
+               at(p.model_angle_deg[k], p.model_value[k]), PaletteColour(0), 2,
                cv::LINE_AA);
     }
     for (size_t k = 0; k < p.measured_angle_deg.size(); ++k) {
       if (!std::isfinite(p.measured_value[k])) continue;
       cv::circle(image, at(p.measured_angle_deg[k], p.measured_value[k]), 3,
-                 SeriesColour(1), cv::FILLED, cv::LINE_AA);
+                 PaletteColour(1), cv::FILLED, cv::LINE_AA);
     }
     Text(&image, p.title,
          {static_cast<int>(panel_w * i + 10), top + panel_h + 25}, 0.45);

@@ -3,10 +3,14 @@
 // a BRDF slice. Every file is written atomically (io/atomic_file.h).
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace clothfit {
+
+using Rgb8 = std::array<unsigned char, 3>;
 
 struct ChartPoint {
   double x = 0.0, y = 0.0;
@@ -17,14 +21,21 @@ struct ChartPoint {
 struct ScatterSeries {
   std::string name;  // legend
   std::vector<ChartPoint> points;
-  bool lines = false;  // join the points in order
+  bool lines = false;          // join the points in order
+  bool dashed = false;         // ... with every other segment left out
+  bool markers = true;         // a dot at every point
+  std::optional<Rgb8> colour;  // else the palette's, by the series' index
   // Part of the Pareto front's point set (fastest at each error level).
   bool pareto = false;
 };
 
+// One drawer for scatter and line charts.
 struct ScatterChart {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
+  // A fixed y range when y_min < y_max (e.g. [0, 1] for a fraction);
+  // otherwise it comes from the data.
+  double y_min = 0.0, y_max = 0.0;
   std::vector<ScatterSeries> series;
   // Mark the Pareto front (smallest y for every x and below) over the
   // points of the series with pareto = true.

@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -80,10 +81,7 @@ void ColourRange(const HeatMap& map, double* lo, double* hi) {
 }
 
 std::string Format(double value) {
-  if (!std::isfinite(value)) return "-";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.3g", value);
-  return buffer;
+  return std::isfinite(value) ? text_util::FormatNumber(value, 3) : "-";
 }
 
 }  // namespace
