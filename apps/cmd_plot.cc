@@ -12,8 +12,6 @@
 namespace clothfit {
 namespace {
 
-constexpr double kDeg = kPi / 180.0;
-
 // Mean of the three channels (the plot's value).
 double Grey(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
 
@@ -46,8 +44,8 @@ int RunPlot(int argc, char** argv) {
   if (table.quantity == Quantity::kTransmittance) {
     args.Fail(args.Get("data") + ": plot draws reflection, not transmittance");
   }
-  const double phi = args.GetDouble("phi-deg") * kDeg;
-  const double window = args.GetDouble("window-deg") * kDeg;
+  const double phi = Radians(args.GetDouble("phi-deg"));
+  const double window = Radians(args.GetDouble("window-deg"));
   if (!(window > 0.0 && window < kPi / 2)) {
     args.Fail("option '--window-deg': must be in (0, 90)");
   }
@@ -71,10 +69,10 @@ int RunPlot(int argc, char** argv) {
   for (double deg : incidences) {
     PolarPanel panel;
     panel.incidence_deg = deg;
-    const double ti = deg * kDeg;
+    const double ti = Radians(deg);
     const glm::dvec3 wi = std::sin(ti) * u + glm::dvec3(0, 0, std::cos(ti));
     for (int a = -89; a <= 89; ++a) {
-      const double to = a * kDeg;
+      const double to = Radians(a);
       const glm::dvec3 wo = -std::sin(to) * u + glm::dvec3(0, 0, std::cos(to));
       panel.model_angle_deg.push_back(a);
       panel.model_value.push_back(
@@ -91,7 +89,7 @@ int RunPlot(int argc, char** argv) {
         continue;
       }
       panel.measured_angle_deg.push_back(
-          std::atan2(-glm::dot(row.wo, u), row.wo.z) / kDeg);
+          Degrees(std::atan2(-glm::dot(row.wo, u), row.wo.z)));
       panel.measured_value.push_back(Grey(row.value));
     }
     char title[96];

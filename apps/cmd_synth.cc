@@ -138,7 +138,7 @@ int RunSynth(int argc, char** argv) {
                 args.Get("max-theta-deg"));
     }
     sampling.min_cos_theta =
-        max_theta >= 90.0 ? 0.0 : std::cos(max_theta * kPi / 180.0);
+        max_theta >= 90.0 ? 0.0 : std::cos(Radians(max_theta));
     sampling.full_sphere_out =
         std::holds_alternative<ThreadParams>(model.params) ||
         std::holds_alternative<SlabParams>(model.params);

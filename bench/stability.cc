@@ -45,7 +45,7 @@ double Error(const ModelParams& fitted, const ModelParams& truth,
 // Rows of a hemisphere sample: all (coverage 90), theta <= level (near
 // normal) or, for a negative level, both theta >= -level (grazing only).
 std::vector<TableRow> Coverage(std::vector<TableRow> rows, double level) {
-  const double c = std::cos(std::abs(level) * kPi / 180.0);
+  const double c = std::cos(Radians(std::abs(level)));
   std::vector<TableRow> kept;
   for (const TableRow& r : rows) {
     const bool near = r.wi.z >= c && std::abs(r.wo.z) >= c;

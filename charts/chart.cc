@@ -11,11 +11,11 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
+#include "models/math.h"
 
 namespace clothfit {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const cv::Scalar kBlack(0, 0, 0), kGrey(170, 170, 170), kLight(235, 235, 235),
     kRed(30, 30, 220), kFrontColour(60, 60, 60);
 // Series colours (BGR): blue, orange, green, purple, brown, pink, olive.
@@ -301,7 +301,7 @@ void WritePolarPlotPng(const std::vector<PolarPanel>& panels,
     const cv::Point centre(static_cast<int>(panel_w * i + panel_w / 2),
                            top + panel_h);
     auto at = [&](double angle_deg, double value) {
-      const double a = angle_deg * kPi / 180.0;
+      const double a = Radians(angle_deg);
       const double r = radius * std::max(0.0, value) / max_value;
       return cv::Point(
           centre.x + static_cast<int>(std::lround(r * std::sin(a))),
@@ -317,7 +317,7 @@ void WritePolarPlotPng(const std::vector<PolarPanel>& panels,
     cv::line(image, centre, {centre.x, centre.y - static_cast<int>(radius)},
              kLight);
     // The light: an arrow from the rim towards the centre at -theta_i.
-    const double li = -p.incidence_deg * kPi / 180.0;
+    const double li = -Radians(p.incidence_deg);
     const cv::Point rim(
         centre.x + static_cast<int>(std::lround(radius * std::sin(li))),
         centre.y - static_cast<int>(std::lround(radius * std::cos(li))));

@@ -25,7 +25,7 @@ glm::dvec3 SampleHemisphere(double min_cos, double sign, Random* random) {
 }
 
 glm::dvec3 Grazing(Random* random) {
-  constexpr double kTheta = 89.9 * kPi / 180.0;
+  constexpr double kTheta = Radians(89.9);
   const double phi = 2.0 * kPi * random->Uniform();
   return glm::dvec3(std::sin(kTheta) * std::cos(phi),
                     std::sin(kTheta) * std::sin(phi), std::cos(kTheta));

@@ -83,6 +83,27 @@ void WriteFileAtomically(const std::string& path, const std::string& content) {
   }
 }
 
+void WriteAtomicallyVia(
+    const std::string& path,
+    const std::function<std::string(const std::string&)>& write) {
+  std::string temp_path;
+  ::close(CreateTempBeside(path, &temp_path));
+  std::string problem;
+  try {
+    problem = write(temp_path);
+  } catch (...) {
+    ::unlink(temp_path.c_str());
+    throw;
+  }
+  if (problem.empty() && std::rename(temp_path.c_str(), path.c_str()) != 0) {
+    problem = std::string("cannot write: ") + std::strerror(errno);
+  }
+  if (!problem.empty()) {
+    ::unlink(temp_path.c_str());
+    throw InputError(path + ": " + problem);
+  }
+}
+
 void ReadFileInChunks(const std::string& path,
                       const std::function<void(std::string_view)>& consume) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);

@@ -13,6 +13,16 @@ namespace clothfit {
 // and the system's reason when the file cannot be written.
 void WriteFileAtomically(const std::string& path, const std::string& content);
 
+// Writes `path` atomically through `write`, for libraries that open the
+// file themselves (OpenEXR, OpenImageIO): `write` is given the name of a
+// new, empty file beside `path`, writes it, and returns "" or the problem
+// ("cannot write image: ..."). The file is renamed over `path` when
+// `write` succeeded and removed otherwise, also when it throws. Throws
+// InputError "path: problem".
+void WriteAtomicallyVia(
+    const std::string& path,
+    const std::function<std::string(const std::string&)>& write);
+
 // Throws InputError ("path: cannot write: reason") unless a file can be
 // created beside `path` (its directory exists and is writable): a command
 // checks its output before a long computation, not after. Leaves nothing

@@ -8,11 +8,8 @@
 #include <ImfTileDescriptionAttribute.h>
 #include <ImfTiledInputFile.h>
 #include <ImfTiledOutputFile.h>
-#include <fcntl.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -46,9 +43,6 @@ constexpr size_t kMaxChannelNameLength = 255;
 // before anything is allocated.
 constexpr int64_t kMaxSide = int64_t{1} << 24;
 constexpr int64_t kMaxFloats = int64_t{1} << 31;
-
-// Distinguishes temporary files of concurrent writers within one process.
-std::atomic<unsigned> temp_counter{0};
 
 [[noreturn]] void Fail(const std::string& path, const std::string& problem) {
   throw InputError(path + ": " + problem);
@@ -138,64 +132,41 @@ Imf::FrameBuffer MakeFrameBuffer(const std::vector<std::string>& channels,
   return frame_buffer;
 }
 
-// Creates an empty, unused file beside `path` and returns its name.
-std::string MakeTempFile(const std::string& path) {
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" +
-                             std::to_string(temp_counter.fetch_add(1));
-    const int fd =
-        ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0) {
-      ::close(fd);
-      return temp;
-    }
-    if (errno != EEXIST) {
-      Fail(path, std::string("cannot write: ") + std::strerror(errno));
-    }
-  }
-  Fail(path, std::string("cannot write: ") + std::strerror(EEXIST));
-}
-
 void WriteExr(const ParamMipmap& mipmap, const std::string& path) {
   const int width = mipmap.levels[0].width;
   const int height = mipmap.levels[0].height;
-  const std::string temp = MakeTempFile(path);
-  try {
-    Imf::Header header(width, height);
-    const bool mipmapped =
-        static_cast<int>(mipmap.levels.size()) == MipLevelCount(width, height);
-    header.setTileDescription(Imf::TileDescription(
-        kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
-        Imf::ROUND_DOWN));
-    header.compression() = Imf::ZIP_COMPRESSION;
-    for (const std::string& name : mipmap.channels) {
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    }
-    std::ofstream stream(temp, std::ios::binary | std::ios::trunc);
-    if (!stream) Fail(path, "cannot write: cannot open " + temp);
-    {
-      Imf::StdOFStream exr_stream(stream, temp.c_str());
-      Imf::TiledOutputFile out(exr_stream, header);
-      for (int level = 0; level < out.numLevels(); ++level) {
-        out.setFrameBuffer(
-            MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
-        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1,
-                       level);
+  WriteAtomicallyVia(path, [&](const std::string& temp) -> std::string {
+    try {
+      Imf::Header header(width, height);
+      const bool mipmapped = static_cast<int>(mipmap.levels.size()) ==
+                             MipLevelCount(width, height);
+      header.setTileDescription(Imf::TileDescription(
+          kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
+          Imf::ROUND_DOWN));
+      header.compression() = Imf::ZIP_COMPRESSION;
+      for (const std::string& name : mipmap.channels) {
+        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
       }
-      // The destructor writes the tile offset table.
+      std::ofstream stream(temp, std::ios::binary | std::ios::trunc);
+      if (!stream) return "cannot write: cannot open " + temp;
+      {
+        Imf::StdOFStream exr_stream(stream, temp.c_str());
+        Imf::TiledOutputFile out(exr_stream, header);
+        for (int level = 0; level < out.numLevels(); ++level) {
+          out.setFrameBuffer(
+              MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
+          out.writeTiles(0, out.numXTiles(level) - 1, 0,
+                         out.numYTiles(level) - 1, level);
+        }
+        // The destructor writes the tile offset table.
+      }
+      stream.close();
+      if (!stream) return "cannot write: error while writing " + temp;
+      return "";
+    } catch (const std::exception& error) {
+      return std::string("cannot write OpenEXR file: ") + error.what();
     }
-    stream.close();
-    if (!stream) Fail(path, "cannot write: error while writing " + temp);
-    if (std::rename(temp.c_str(), path.c_str()) != 0) {
-      Fail(path, std::string("cannot write: ") + std::strerror(errno));
-    }
-  } catch (const InputError&) {
-    ::unlink(temp.c_str());
-    throw;
-  } catch (const std::exception& error) {
-    ::unlink(temp.c_str());
-    Fail(path, std::string("cannot write OpenEXR file: ") + error.what());
-  }
+  });
 }
 
 // Reads a non-negative integer member of the index.

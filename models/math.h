@@ -17,8 +17,6 @@
 namespace clothfit {
 
 inline constexpr double kPi = 3.14159265358979323846;
-inline constexpr double kDegreesPerRadian = 180.0 / kPi;
-inline constexpr double kRadiansPerDegree = kPi / 180.0;
 
 template <typename T>
 using Vec3 = glm::vec<3, T>;
@@ -52,13 +50,14 @@ inline T SafeSqrt(const T& x) {
   return sqrt(x);
 }
 
+// The one conversion between degrees (files, messages) and radians (code).
 template <typename T>
-inline T Radians(const T& degrees) {
+constexpr T Radians(const T& degrees) {
   return degrees * T(kPi / 180.0);
 }
 
 template <typename T>
-inline T Degrees(const T& radians) {
+constexpr T Degrees(const T& radians) {
   return radians * T(180.0 / kPi);
 }
 

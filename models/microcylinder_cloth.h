@@ -179,7 +179,7 @@ inline std::string ValidateClothParams(const ClothParams& c) {
 template <typename T>
 T MaskingTerm(const T& cos_i, const T& cos_o, const T& angle_d) {
   using std::exp;
-  constexpr double kWidth = 20.0 * kPi / 180.0;  // u(x), eq. 9
+  constexpr double kWidth = Radians(20.0);  // u(x), eq. 9
   // Both terms vanish (value and derivative) unless both cosines are > 0.
   if (!(cos_i > T(0.0) && cos_o > T(0.0))) return T(0.0);
   const T u = exp(-angle_d * angle_d / T(2.0 * kWidth * kWidth));

@@ -59,7 +59,7 @@ class BadInputTest : public ::testing::Test {
     views.channels = 1;
     for (double theta : {0.0, 30.0, 50.0}) {
       TableRow row;
-      row.wo = DirectionFromAngles(theta * kRadiansPerDegree, 0.3);
+      row.wo = DirectionFromAngles(Radians(theta), 0.3);
       row.value = glm::dvec3(0.5);
       views.rows.push_back(row);
     }

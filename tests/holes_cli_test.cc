@@ -34,7 +34,7 @@ std::string WriteDirections(const fs::path& dir) {
   for (double theta : {0.0, 15.0, 30.0, 45.0, 55.0, 65.0}) {
     for (double phi : {0.0, 30.0, 45.0, 120.0, 250.0}) {
       TableRow row;
-      row.wo = DirectionFromAngles(theta * kPi / 180.0, phi * kPi / 180.0);
+      row.wo = DirectionFromAngles(Radians(theta), Radians(phi));
       table.rows.push_back(row);
     }
   }

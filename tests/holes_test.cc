@@ -74,7 +74,7 @@ HoleRatios BlockTruth(const std::vector<HoleRatios>& truths, const Mask& mask,
 }
 
 glm::dvec3 View(double theta_deg, double phi_deg) {
-  const double t = theta_deg * kPi / 180.0, p = phi_deg * kPi / 180.0;
+  const double t = Radians(theta_deg), p = Radians(phi_deg);
   return glm::dvec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p),
                     std::cos(t));
 }

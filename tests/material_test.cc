@@ -43,7 +43,7 @@ using testing_util::ExpectHas;
 using testing_util::FreshTestDir;
 
 glm::dvec3 Dir(double theta_deg, double phi_deg) {
-  const double t = theta_deg * kPi / 180.0, p = phi_deg * kPi / 180.0;
+  const double t = Radians(theta_deg), p = Radians(phi_deg);
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 

@@ -73,7 +73,7 @@ TEST(VirtualGonioTest, TableLayoutAndMetadata) {
   for (int light = 0; light < pairs; ++light) {
     dirs.push_back(table.rows[light].wi);
   }
-  const double min_cos = std::cos(85.0 * kPi / 180.0);
+  const double min_cos = std::cos(Radians(85.0));
   for (int i = 0; i < pairs; ++i) {
     EXPECT_NEAR(glm::length(dirs[i]), 1.0, 1e-12);
     EXPECT_GT(dirs[i].z, min_cos);

@@ -1,0 +1,114 @@
+// The reader of measurement tables (io/table.h) behind ReadTable and
+// ParseTable: the known columns and a line-by-line parser, split over
+// table_parser.cc (metadata, header, lines) and table_rows.cc (a row's
+// fields). For io/table*.cc only (not installed).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/input_error.h"
+#include "io/table.h"
+
+namespace clothfit {
+namespace table_internal {
+
+// Columns a table may have. The order is the order of semantic checks.
+enum ColumnId : int {
+  kThetaI,
+  kPhiI,
+  kThetaO,
+  kPhiO,
+  kWiX,
+  kWiY,
+  kWiZ,
+  kWoX,
+  kWoY,
+  kWoZ,
+  kValue,
+  kR,
+  kG,
+  kB,
+  kSigma,
+  kSigmaR,
+  kSigmaG,
+  kSigmaB,
+  kWeight,
+  kAlpha,
+  kS,
+  kT,
+  kNormalX,
+  kNormalY,
+  kNormalZ,
+  kColumnCount
+};
+
+constexpr std::array<const char*, kColumnCount> kColumnNames = {
+    "theta_i", "phi_i",    "theta_o",  "phi_o",   "wi_x",   "wi_y",  "wi_z",
+    "wo_x",    "wo_y",     "wo_z",     "value",   "r",      "g",     "b",
+    "sigma",   "sigma_r",  "sigma_g",  "sigma_b", "weight", "alpha", "s",
+    "t",       "normal_x", "normal_y", "normal_z"};
+
+// The number a field spells (decimal, as strtod: optional sign, exponent,
+// inf/nan); nullopt when it spells none. std::from_chars does the common case
+// without allocating; values beyond the double range take strtod's answer
+// (+-inf, or a subnormal / 0).
+std::optional<double> ParseNumber(std::string_view field);
+
+// "column 'theta_i'" for messages.
+std::string ColumnLabel(int column);
+
+// The metadata keys the reader interprets itself.
+bool IsRecognisedMetaKey(const std::string& key);
+
+// Parsing state shared by the header and row readers.
+class TableParser {
+ public:
+  TableParser(const std::string& name, const ReadTableOptions& options)
+      : name_(name), options_(options) {}
+
+  ReadTableResult Parse(std::string_view text);
+  // Line by line (without its '\n'), then Finish: what Parse does, for a
+  // file read piece by piece.
+  void Line(std::string_view content);
+  ReadTableResult Finish();
+  size_t rows() const { return result_.table.rows.size(); }
+  void Reserve(size_t rows) { result_.table.rows.reserve(rows); }
+
+ private:
+  [[noreturn]] void Fail(int line, int column, const std::string& problem) {
+    throw InputError(FormatLocation(name_, line, column) + ": " + problem);
+  }
+
+  void ParseMetadata(std::string_view content, int line);
+  void ParseHeader(std::string_view text, int line);
+  // Requires all columns in [first, first + count) to be present.
+  void RequireAll(int first, int count, int line);
+  // The first present column in [first, first + count), or -1.
+  int FirstPresent(int first, int count) const;
+  bool Has(int column) const { return field_of_[column] >= 0; }
+  void ParseRow(std::string_view text, int line);
+  double Angle(int column) const;
+
+  const std::string& name_;
+  const ReadTableOptions& options_;
+  bool has_values_ = true;  // false: a directions-only table
+  ReadTableResult result_;
+  int line_ = 0;         // lines seen
+  int header_line_ = 0;  // line of the header, 0 before it
+  bool radians_ = false;
+  int quantity_line_ = 0;
+  int units_line_ = 0;
+  // Field index (0-based) of each known column, -1 when absent.
+  std::array<int, kColumnCount> field_of_{};
+  std::vector<std::string> header_names_;
+  bool incident_columns_ = false;
+  // Numbers of the row being parsed, indexed by ColumnId.
+  std::array<double, kColumnCount> numbers_{};
+};
+
+}  // namespace table_internal
+}  // namespace clothfit
