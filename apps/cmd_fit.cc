@@ -86,10 +86,6 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
   ReadTableOptions read_options;
   read_options.skip_invalid = args.Has("skip-invalid");
   ReadTableResult read = ReadTable(path, read_options);
-  if (std::none_of(read.table.rows.begin(), read.table.rows.end(),
-                   [](const TableRow& row) { return row.weight > 0.0; })) {
-    throw InputError(path + ": every row has weight 0: nothing to fit");
-  }
   if (read.skipped > 0) {
     std::cerr << "warning: skipped " << read.skipped
               << " invalid row(s); first: " << read.first_skip_reason << "\n";

@@ -388,18 +388,10 @@ int RunTruth(int argc, char** argv) {
       &table);
   table.SetMeta("method", "truth (2D DDA)");
   if (noise > 0.0) {
+    // Transmittance lies in [0, 1]: sigma is floored at 1 % of full scale
+    // so that views with no light left keep a finite weight.
     Random random(static_cast<uint64_t>(args.GetInt("seed")));
-    table.has_sigma = true;
-    for (TableRow& row : table.rows) {
-      // Transmittance lies in [0, 1]: sigma is floored at 1 % of full
-      // scale so that views with no light left keep a finite weight.
-      row.sigma = noise * glm::max(glm::abs(row.value), glm::dvec3(0.01));
-      for (int c = 0; c < 3; ++c) {
-        row.value[c] = c < table.channels
-                           ? row.value[c] * (1.0 + noise * random.Normal())
-                           : row.value[0];
-      }
-    }
+    AddMultiplicativeNoise(noise, 0.01, &random, &table);
   }
   WriteTable(table, out);
   return 0;
@@ -416,7 +408,7 @@ int RunHoles(int argc, char** argv) {
     std::cout << kHolesUsage;
     return 0;
   }
-  // One line, like every usage error (issue 8).
+  // One line, like every usage error.
   std::cerr << "error: "
             << (sub.empty() ? std::string("clothfit holes needs a subcommand")
                             : "unknown holes subcommand '" + sub + "'")

@@ -139,9 +139,7 @@ int RunSynth(int argc, char** argv) {
     }
     sampling.min_cos_theta =
         max_theta >= 90.0 ? 0.0 : std::cos(Radians(max_theta));
-    sampling.full_sphere_out =
-        std::holds_alternative<ThreadParams>(model.params) ||
-        std::holds_alternative<SlabParams>(model.params);
+    sampling.full_sphere_out = FullSphereOut(model.params);
     table.rows = SampleDirections(sampling, &random);
     table.direction_columns = DirectionColumns::kAngles;
   }
@@ -152,7 +150,8 @@ int RunSynth(int argc, char** argv) {
   sample << "synthetic, model " << ModelName(model.params);
   if (args.Has("preset")) sample << " preset " << args.Get("preset");
   if (args.Has("params")) sample << " from " << args.Get("params");
-  sample << ", noise " << options.noise << ", seed " << seed;
+  sample << ", noise " << text_util::FormatNumber(options.noise, 6) << ", seed "
+         << seed;
   table.SetMeta("sample", sample.str());
   WriteTable(table, out_path);
   if (const auto* slab = std::get_if<SlabParams>(&model.params)) {

@@ -343,7 +343,7 @@ MeasurementTable SlabMonteCarloBsdfTable(const SlabMonteCarloResult& result,
       for (const McEstimate& e : *side) {
         TableRow& row = table.rows[i++];
         const double scale =
-            quantity == Quantity::kCosineWeighted ? std::abs(row.wi.z) : 1.0;
+            QuantityFactor(Quantity::kBrdf, quantity, row.wi.z);
         row.value = e.mean * scale;
         row.sigma = glm::max(e.std_error * scale, glm::dvec3(kMinSigma));
       }

@@ -89,19 +89,38 @@ std::vector<TableRow> SampleDirections(const DirectionSampling& sampling,
   return rows;
 }
 
+bool FullSphereOut(const ModelParams& params) {
+  return std::holds_alternative<ThreadParams>(params) ||
+         std::holds_alternative<SlabParams>(params);
+}
+
 void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
                       Random* random, MeasurementTable* table) {
   table->quantity = options.quantity;
-  table->has_sigma = options.noise > 0.0;
+  table->has_sigma = false;
   for (TableRow& row : table->rows) {
-    const glm::dvec3 clean = Evaluate(params, row.wi, row.wo, options.quantity);
-    row.value = clean;
+    row.value = Evaluate(params, row.wi, row.wo, options.quantity);
     row.sigma = glm::dvec3(1.0);
-    if (options.noise > 0.0) {
-      for (int c = 0; c < 3; ++c) {
-        row.value[c] = clean[c] * (1.0 + options.noise * random->Normal());
-        row.sigma[c] = std::max(options.noise * std::abs(clean[c]), 1e-12);
+  }
+  if (options.noise > 0.0) {
+    AddMultiplicativeNoise(options.noise, 0.0, random, table);
+  }
+}
+
+void AddMultiplicativeNoise(double noise, double value_floor, Random* random,
+                            MeasurementTable* table) {
+  table->has_sigma = true;
+  for (TableRow& row : table->rows) {
+    for (int c = 0; c < 3; ++c) {
+      if (c >= table->channels) {
+        row.value[c] = row.value[0];
+        row.sigma[c] = row.sigma[0];
+        continue;
       }
+      const double clean = row.value[c];
+      row.sigma[c] =
+          std::max(noise * std::max(std::abs(clean), value_floor), 1e-12);
+      row.value[c] = clean * (1.0 + noise * random->Normal());
     }
   }
 }
@@ -110,8 +129,7 @@ MeasurementTable SyntheticTable(const ModelParams& params,
                                 DirectionSampling sampling,
                                 const SynthOptions& options, uint64_t seed) {
   Random random(seed);
-  sampling.full_sphere_out = std::holds_alternative<ThreadParams>(params) ||
-                             std::holds_alternative<SlabParams>(params);
+  sampling.full_sphere_out = FullSphereOut(params);
   MeasurementTable table;
   table.rows = SampleDirections(sampling, &random);
   SynthesizeValues(params, options, &random, &table);

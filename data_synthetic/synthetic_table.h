@@ -37,6 +37,11 @@ struct DirectionSampling {
   bool full_sphere_out = false;
 };
 
+// Whether a model's tables sample wo over the whole sphere: a thread (its
+// thread frame has no surface) and a slab (transmission); the others are
+// reflection only.
+bool FullSphereOut(const ModelParams& params);
+
 // Rows uniform in solid angle over the hemisphere (wi, and wo unless
 // full_sphere_out), with 5 % of the rows at grazing (theta = 89.9 deg)
 // when min_cos_theta == 0. Values are zero; sigma and weight are 1.
@@ -48,6 +53,14 @@ struct SynthOptions {
   // Relative standard deviation of multiplicative Gaussian noise; 0 = none.
   double noise = 0.0;
 };
+
+// Multiplicative Gaussian noise on a table's values: each channel below
+// table->channels is multiplied by 1 + noise N(0, 1) (the others copy
+// channel 0), and sigma = max(noise max(|value|, value_floor), 1e-12) from
+// the clean value (value_floor keeps a finite weight where the clean value
+// is 0, e.g. 0.01 of a transmittance's full scale); has_sigma. noise > 0.
+void AddMultiplicativeNoise(double noise, double value_floor, Random* random,
+                            MeasurementTable* table);
 
 // Fills the rows' values with the model's and adds noise. When noise > 0
 // the rows get sigma = noise * |clean value| (at least 1e-12) and the table

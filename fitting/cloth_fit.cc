@@ -230,6 +230,7 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
 ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
                         const ClothFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();  // search + solves
+  RequireWeightedRows(table);
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError(
         "a cloth model predicts brdf or cosine_weighted values, "
@@ -339,15 +340,14 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   std::vector<double> inv_q(table.rows.size(), 0.0);  // 1 / Q, 0 if Q <= 0
   for (size_t i = 0; i < table.rows.size(); ++i) {
-    double q = 0.0, coverage = 0.0;
+    ClothNormalisation<double> normalisation;
     for (size_t j = 0; j < n; ++j) {
       Vec3<double> s_j;
       double w_j;
       ThreadSums(init.threads[j].params, *search_samples[i], j, &s_j, &w_j);
-      q += init.threads[j].coverage * w_j;
-      coverage += init.threads[j].coverage;
+      normalisation.Add(init.threads[j].coverage, w_j);
     }
-    q += (1.0 - coverage) * table.rows[i].wi.z;
+    const double q = normalisation.Q(table.rows[i].wi.z);
     inv_q[i] = q > 0.0 ? 1.0 / q : 0.0;
   }
   StartSearchProblem search;

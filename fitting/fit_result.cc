@@ -11,6 +11,22 @@
 
 namespace clothfit {
 
+namespace {
+
+std::string SourceOf(const MeasurementTable& table) {
+  return table.source.empty() ? std::string("table") : table.source;
+}
+
+}  // namespace
+
+void RequireWeightedRows(const MeasurementTable& table) {
+  if (std::none_of(table.rows.begin(), table.rows.end(),
+                   [](const TableRow& row) { return row.weight > 0.0; })) {
+    throw InputError(SourceOf(table) +
+                     ": every row has weight 0: nothing to fit");
+  }
+}
+
 int CountNotReflection(const MeasurementTable& table,
                        const std::string& model) {
   const size_t count = static_cast<size_t>(
@@ -18,7 +34,7 @@ int CountNotReflection(const MeasurementTable& table,
                     [](const TableRow& row) { return !IsReflectionRow(row); }));
   if (count > 0 && count == table.rows.size()) {
     throw InputError(
-        (table.source.empty() ? std::string("table") : table.source) +
+        SourceOf(table) +
         ": no row has both the light and the view above the surface (wi.z "
         "and wo.z > 0); the " +
         model + " model is reflection only");

@@ -84,6 +84,10 @@ struct FitResult {
   FitReport report;
 };
 
+// Throws InputError naming the table's source when no row has a weight
+// above 0 (nothing to fit).
+void RequireWeightedRows(const MeasurementTable& table);
+
 // For a reflection-only model (`model`: "cloth", "lafortune"): the number
 // of rows of `table` with the light or the view below the surface, which
 // its fit leaves out and counts in FitReport::rows_not_used. Throws

@@ -43,29 +43,31 @@ GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
   const size_t n = table.rows.size();
   std::vector<HoleRatios> ratios(n);
   for (size_t i = 0; i < n; ++i) {
-    ratios[i] =
-        TileRatios(tile.texels, tile.method,
-                   ViewOffset(params.thickness_texels, table.rows[i].wo));
+    ratios[i] = HolesTileRatios(params, tile, table.rows[i].wo);
+  }
+  // The wall colour of each free channel from the weighted normal
+  // equations of the model, linear in it (weights as the fit's,
+  // fitting/residual_weight.h).
+  for (int c = 0; c < table.channels; ++c) {
+    if (!specs[1 + c].free) continue;
+    double num = 0.0, den = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      const TableRow& row = table.rows[i];
+      const double w = InverseVariance(row, 1.0)[c];
+      num += w * ratios[i].occluded * (row.value[c] - ratios[i].transparent);
+      den += w * Sqr(ratios[i].occluded);
+    }
+    if (den > 0.0) params.wall_color[c] = std::clamp(num / den, 0.0, 1.0);
   }
   GridPoint point;
   point.cost = 0.0;
-  for (int c = 0; c < table.channels; ++c) {
-    if (specs[1 + c].free) {
-      double num = 0.0, den = 0.0;
-      for (size_t i = 0; i < n; ++i) {
-        const TableRow& row = table.rows[i];
-        const double w = row.weight / Sqr(row.sigma[c]);
-        num += w * ratios[i].occluded * (row.value[c] - ratios[i].transparent);
-        den += w * Sqr(ratios[i].occluded);
-      }
-      if (den > 0.0) params.wall_color[c] = std::clamp(num / den, 0.0, 1.0);
-    }
-    for (size_t i = 0; i < n; ++i) {
-      const TableRow& row = table.rows[i];
-      const double model =
-          ratios[i].transparent + params.wall_color[c] * ratios[i].occluded;
+  for (size_t i = 0; i < n; ++i) {
+    const TableRow& row = table.rows[i];
+    const glm::dvec3 model = TransmittanceOfRatios(params, ratios[i]);
+    const glm::dvec3 scale = ResidualScale(row);
+    for (int c = 0; c < table.channels; ++c) {
       point.cost +=
-          0.5 * row.weight * Sqr((model - row.value[c]) / row.sigma[c]);
+          0.5 * Sqr(WeightedResidual(model[c], row.value[c], scale[c]));
     }
   }
   point.params = params;
@@ -111,6 +113,7 @@ std::vector<std::vector<double>> SearchStarts(
 HolesFitResult FitHoles(const MeasurementTable& table, const HolesTile& tile,
                         const HolesFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  RequireWeightedRows(table);
   if (table.quantity != Quantity::kTransmittance) {
     throw InputError(std::string("a holes model predicts transmittance; the "
                                  "table holds ") +

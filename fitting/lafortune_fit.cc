@@ -244,12 +244,15 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   // c^N matches the brightest excess over it.
   glm::dvec3 num(0.0), den(0.0), peak(0.0);
   for (size_t i = 0; i < samples.size(); ++i) {
-    num += samples.weight[i] * samples.value[i] * samples.l[i].z;
-    den += samples.weight[i] * samples.l[i].z * samples.l[i].z;
+    const double lz = Foreshortening(samples.l[i]);
+    num += samples.weight[i] * samples.value[i] * lz;
+    den += samples.weight[i] * lz * lz;
   }
   const glm::dvec3 rho_d = glm::dvec3(den.x > 0 ? num.x / den.x : 0.0,
                                       den.y > 0 ? num.y / den.y : 0.0,
                                       den.z > 0 ? num.z / den.z : 0.0);
+  // The lobes' peak: the largest excess of rho / l.z over rho_d, with l.z
+  // floored at 1e-3 so that grazing samples do not decide the estimate.
   for (size_t i = 0; i < samples.size(); ++i) {
     const glm::dvec3 excess =
         samples.value[i] / std::max(samples.l[i].z, 1e-3) - rho_d;

@@ -76,6 +76,7 @@ std::vector<ParameterReport> LafortuneParameterReports(
 
 LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
                                      const LafortuneMipOptions& options) {
+  RequireWeightedRows(table);
   CountNotReflection(table, "lafortune");
   const ViewIndex views(table);
   std::vector<size_t> rows(table.rows.size());
@@ -126,6 +127,7 @@ LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
 LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
                                    const LafortuneMipOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  RequireWeightedRows(table);
   if (!table.has_texels) {
     throw InputError("a spatially varying fit needs s,t texel columns");
   }

@@ -171,8 +171,7 @@ Baseline FitBaseline(const std::vector<Sample>& samples, int channels,
     }
     any_bsdf = true;
     if (back_lit_black && SlabTransmits(s.row->wi, s.row->wo)) continue;
-    const double k =
-        s.quantity == Quantity::kCosineWeighted ? std::abs(s.row->wi.z) : 1.0;
+    const double k = QuantityFactor(Quantity::kBrdf, s.quantity, s.row->wi.z);
     skk += s2 * k * k;
     skv += s2 * k * s.row->value;
   }
@@ -190,9 +189,8 @@ Baseline FitBaseline(const std::vector<Sample>& samples, int channels,
     if (s.quantity != Quantity::kTransmittance) {
       const bool black = back_lit_black && SlabTransmits(s.row->wi, s.row->wo);
       m = black ? glm::dvec3(0.0)
-                : lambert * (s.quantity == Quantity::kCosineWeighted
-                                 ? std::abs(s.row->wi.z)
-                                 : 1.0);
+                : lambert *
+                      QuantityFactor(Quantity::kBrdf, s.quantity, s.row->wi.z);
     }
     for (int c = 0; c < s.channels; ++c) {
       const double r = m[c] - s.row->value[c];
@@ -315,6 +313,7 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   const bool sigma_known = tables.front().has_sigma;
   for (const MeasurementTable& table : tables) {
     if (table.rows.empty()) throw InputError("slab fit: a table has no rows");
+    RequireWeightedRows(table);
     const bool one_channel_direct =
         table.quantity == Quantity::kTransmittance && table.channels == 1 &&
         !options.per_channel_tau;

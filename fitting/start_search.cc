@@ -6,6 +6,8 @@
 #include <map>
 #include <memory>
 
+#include "fitting/residual_weight.h"
+
 namespace clothfit {
 namespace {
 
@@ -34,8 +36,9 @@ class Gram {
     std::vector<double> column(n_);
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
+      const glm::dvec3 weight = InverseVariance(row, 1.0);
       for (int c = 0; c < channels_; ++c) {
-        const double w = row.weight / (row.sigma[c] * row.sigma[c]);
+        const double w = weight[c];
         const double y = row.value[c];
         for (size_t u = 0; u < n_; ++u) column[u] = vectors[u][i][c];
         double* g = &g_[c * n_ * n_];

@@ -32,6 +32,7 @@ struct ThreadEvaluator {
 ThreadFitResult FitThread(const MeasurementTable& table,
                           const ThreadFitOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();  // search + solves
+  RequireWeightedRows(table);
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError(
         "a thread model predicts brdf or cosine_weighted "

@@ -38,11 +38,18 @@ Vec3<T> ConvertQuantity(const Vec3<T>& value, Quantity from, Quantity to,
   return value / T(Max(wi_z, G(kMinCosIncidence)));
 }
 
-// The factor |wi.z| that turns a value of quantity `from` into rho (1 for
-// rho itself): ConvertQuantity(v, from, kCosineWeighted, wi_z) = k v, and
-// the factor of its sigma.
+// The factor k of ConvertQuantity, value_to = k value_from (also the
+// factor of a sigma): |wi.z| from f to rho, 1 / max(wi.z,
+// kMinCosIncidence) from rho to f, 1 for the same quantity.
+inline double QuantityFactor(Quantity from, Quantity to, double wi_z) {
+  if (from == to) return 1.0;
+  if (to == Quantity::kCosineWeighted) return std::abs(wi_z);
+  return 1.0 / Max(wi_z, kMinCosIncidence);
+}
+
+// The factor that turns a value of quantity `from` into rho.
 inline double CosineWeightedFactor(Quantity from, double wi_z) {
-  return from == Quantity::kCosineWeighted ? 1.0 : std::abs(wi_z);
+  return QuantityFactor(from, Quantity::kCosineWeighted, wi_z);
 }
 
 // Whether parameters of type P predict quantity q.

@@ -249,8 +249,25 @@ void ThreadSums(const ThreadParamsT<T>& params, const Samples& samples,
   *w_j = w * G(inv_count);
 }
 
-// rho from the samples of every thread (eq. 11-13): sum_j a_j S_j / Q with
-// Q = sum_j a_j W_j + (1 - sum_j a_j) wi.z; cloth gives the coverages and
+// The normalisation of eq. 12-13, Q = sum_j a_j W_j + (1 - sum_j a_j) wi.z
+// (the threads' reweighted coverage and the gaps' foreshortened one),
+// summed thread by thread.
+template <typename T>
+struct ClothNormalisation {
+  T weighted = T(0.0), coverage = T(0.0);
+
+  void Add(const T& a_j, const T& w_j) {
+    coverage += a_j;
+    weighted += a_j * w_j;
+  }
+  template <typename G>
+  T Q(const G& wi_z) const {
+    return weighted + (T(1.0) - coverage) * T(wi_z);
+  }
+};
+
+// rho from the samples of every thread (eq. 11-13): sum_j a_j S_j / Q
+// (ClothNormalisation); cloth gives the coverages and
 // scattering parameters (its offsets are not read). ClothRho computes the
 // samples on the fly; a fit with fixed directions and offsets passes samples
 // it computed once.
@@ -259,18 +276,16 @@ Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
                             const Samples& samples, const G& wi_z) {
   const Vec3<T> zero(T(0.0));
   Vec3<T> sum = zero;
-  T q(0.0);
-  T coverage_sum(0.0);
+  ClothNormalisation<T> normalisation;
   for (size_t j = 0; j < cloth.threads.size(); ++j) {
     const ClothThreadT<T>& th = cloth.threads[j];
-    coverage_sum += th.coverage;
     Vec3<T> s_j;
     G w_j;
     ThreadSums(th.params, samples, j, &s_j, &w_j);
     sum += s_j * th.coverage;
-    q += th.coverage * T(w_j);
+    normalisation.Add(th.coverage, T(w_j));
   }
-  q += (T(1.0) - coverage_sum) * T(wi_z);
+  const T q = normalisation.Q(wi_z);
   if (!(q > T(0.0))) return zero;
   return sum / q;
 }
