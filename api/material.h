@@ -1,4 +1,4 @@
-// The stable evaluation API for renderers (issue 9): load a parameter file
+// The stable evaluation API for renderers: load a parameter file
 // or a Lafortune parameter mip map once, then evaluate f or rho for
 // (wi, wo) in a renderer's inner loop.
 //

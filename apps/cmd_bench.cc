@@ -1,5 +1,5 @@
-// clothfit bench: the speed-accuracy sweep of every fitter (issue 7,
-// charts/bench.h).
+// clothfit bench: the speed-accuracy sweep of every fitter
+// (bench/bench.h).
 #include <sys/stat.h>
 #include <unistd.h>
 

@@ -1,6 +1,6 @@
 // clothfit plot: polar plots of a model against measured values in the
 // plane of incidence, a panel per incidence angle (like Daubert et al.
-// 2001, Figs. 3-8; issue 7).
+// 2001, Figs. 3-8).
 #include <cmath>
 #include <cstdio>
 #include <sstream>

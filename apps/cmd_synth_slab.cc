@@ -8,14 +8,17 @@
 #include "bench/slab_error_chart.h"
 #include "data_synthetic/slab_monte_carlo.h"
 #include "data_synthetic/synthetic_table.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
 
 std::string JoinNumbers(const std::vector<double>& values) {
-  std::ostringstream out;
-  for (size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << values[i];
-  return out.str();
+  std::string out;
+  for (size_t i = 0; i < values.size(); ++i) {
+    out += (i ? "," : "") + text_util::FormatNumber(values[i], 6);
+  }
+  return out;
 }
 
 // --NAME as polar angles in [0, 89] degrees.
@@ -210,7 +213,8 @@ int RunSynthSlab(int argc, char** argv) {
     std::ostringstream sample;
     sample << "synthetic, single-scattering slab model from "
            << (args.Has("params") ? args.Get("params") : "--tau/--albedo")
-           << ", noise " << synth.noise << ", seed " << seed;
+           << ", noise " << text_util::FormatNumber(synth.noise, 6) << ", seed "
+           << seed;
     bsdf.SetMeta("sample", sample.str());
     direct.SetMeta("sample", sample.str());
   }

@@ -86,7 +86,7 @@ int UnknownCommand(const std::string& context, const std::string& name) {
 int main(int argc, char** argv) {
   // Ceres logs a failed solve through glog, to stderr (logging is not
   // initialised); the fit reports every such failure in its own message,
-  // so that bad input gets one clear message (issue 8).
+  // so that bad input gets one clear message.
   FLAGS_minloglevel = google::GLOG_FATAL;
   if (argc < 2) {
     PrintUsage(std::cerr);

@@ -1,4 +1,4 @@
-// clothfit bench (issue 7): sweeps over the knobs that trade speed for
+// clothfit bench: sweeps over the knobs that trade speed for
 // accuracy for each fitter, on synthetic data whose truth is held out from
 // the fit, timed over repeated runs (median and spread, since the machine
 // is shared), and written as a CSV, PNG charts and a Markdown summary.

@@ -1,4 +1,4 @@
-// Charts of semi-transparent textures with thickness (issue 6): the
+// Charts of semi-transparent textures with thickness: the
 // transmittance of a mask versus the view angle (Algorithm 3.1, the
 // extension, the ground truth), and the error of both methods over hole
 // size x thickness for square holes (where each one fails). Each is a PNG

@@ -1,4 +1,4 @@
-// clothfit bench --stability (issue 7): how often each fitter succeeds as
+// clothfit bench --stability: how often each fitter succeeds as
 // the data get worse - noise level, distance of the initial guess from the
 // truth, angular coverage of the data, fraction of gross outliers - over
 // several random seeds per level. docs/bench.md names each failure mode and

@@ -1,4 +1,4 @@
-// Fit speed (issue 3): a 10,000-row thread table in under 0.5 s and a
+// Fit speed: a 10,000-row thread table in under 0.5 s and a
 // 5,000-row two-thread cloth table in under 2 s on one core, from the
 // default start (the start search included). Tables are synthetic with 2 %
 // noise; each iteration runs the whole fit. For medians and spread:

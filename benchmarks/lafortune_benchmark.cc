@@ -1,5 +1,5 @@
-// Lafortune + lookup-table fits on virtual-gonioreflectometer data
-// (issue 4): the paper's workload - 32 x 32 texels, 64 views x 64 lights
+// Lafortune + lookup-table fits on virtual-gonioreflectometer data: the
+// paper's workload - 32 x 32 texels, 64 views x 64 lights
 // (n = 8), 2 lobes, all mip levels: 1,365 fits - must take under 60 s on
 // the 2-core machine with peak memory under 2 GB; and the speed-accuracy
 // trade-off over lobe count and iteration caps on a smaller grid.

@@ -1,5 +1,5 @@
-// Model evaluation speed (issue 3: >= 1 million satin rho evaluations per
-// second on one core). Run with --benchmark_repetitions=10 for medians and
+// Model evaluation speed (the target: >= 1 million satin rho evaluations
+// per second on one core). Run with --benchmark_repetitions=10 for medians and
 // spread: build/benchmarks/model_benchmark --benchmark_repetitions=10
 #include <benchmark/benchmark.h>
 
@@ -46,7 +46,7 @@ void BM_ThreadBsdf(benchmark::State& state) {
 }
 BENCHMARK(BM_ThreadBsdf);
 
-// The slab's f_r or f_t (issue 5), wo over the whole sphere.
+// The slab's f_r or f_t, wo over the whole sphere.
 void BM_SlabBsdf(benchmark::State& state) {
   SlabParams slab;
   slab.tau = glm::dvec3(0.08);

@@ -1,4 +1,4 @@
-// Speed of the slab fit and Monte Carlo (issue 5; the model's own speed is
+// Speed of the slab fit and Monte Carlo (the model's own speed is
 // model_benchmark's BM_SlabBsdf): the fit of a 10,000-row table (random
 // directions, reflection and transmission, 2 % noise; start grid included),
 // and Monte Carlo photons per second on one thread and on all cores. For

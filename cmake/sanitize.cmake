@@ -1,4 +1,4 @@
-# Sanitizer and fuzzing builds (issue 8, docs/reliability.md). Each goes in
+# Sanitizer and fuzzing builds (docs/reliability.md). Each goes in
 # its own build directory:
 #   cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 #     -DCLOTHFIT_SANITIZE=ON -DCLOTHFIT_BUILD_BENCHMARKS=OFF

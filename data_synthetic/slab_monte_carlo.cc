@@ -11,6 +11,7 @@
 
 #include "data_synthetic/synthetic_table.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -206,9 +207,9 @@ void Validate(const SlabMonteCarloOptions& o) {
 }
 
 std::string Rgb(const glm::dvec3& v) {
-  char text[96];
-  std::snprintf(text, sizeof(text), "%.6g %.6g %.6g", v.x, v.y, v.z);
-  return text;
+  return text_util::FormatNumber(v.x, 6) + " " +
+         text_util::FormatNumber(v.y, 6) + " " +
+         text_util::FormatNumber(v.z, 6);
 }
 
 TableRow Row(double theta_i_deg, double theta_o_deg, double phi_o_deg) {

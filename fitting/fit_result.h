@@ -62,7 +62,7 @@ struct FitReport {
   // colour of Daubert et al. 2001, Fig. 5); 0 where not computed.
   double view_relative_rms = 0.0;
   // Wall time of the whole fit: printed in the summary, never written to
-  // the parameter file (same inputs give bit-identical files, issue 8).
+  // the parameter file (same inputs give bit-identical files).
   double seconds = 0.0;
   int residuals = 0;
   int rows = 0;  // table rows fitted

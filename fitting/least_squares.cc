@@ -323,7 +323,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     } else if (!best.usable && best_x.empty()) {
       best.termination =
           ceres::TerminationTypeToString(summary.termination_type);
-      // A model value that is not finite is named with its row (issue 8),
+      // A model value that is not finite is named with its row,
       // at the start when the solver could not leave it.
       std::string where = NonFiniteRow(lsq, x);
       if (where.empty() && x != starts[s]) where = NonFiniteRow(lsq, starts[s]);

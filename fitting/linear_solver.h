@@ -1,4 +1,4 @@
-// The linear solver of the Levenberg-Marquardt steps (issue 7): a knob of
+// The linear solver of the Levenberg-Marquardt steps: a knob of
 // every fit, swept by `clothfit bench`. Our own enum, mapped to Ceres by
 // fitting/ceres_linear_solver_internal.h, so that Ceres stays out of the
 // public headers.

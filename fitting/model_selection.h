@@ -1,4 +1,4 @@
-// "Model no more than the data need" (issue 3): fits a ladder of simpler
+// "Model no more than the data need": fits a ladder of simpler
 // configurations and keeps the simplest whose relative RMS error meets a
 // tolerance, reporting every candidate tried with its error and BIC.
 //

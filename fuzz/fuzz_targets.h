@@ -1,4 +1,4 @@
-// Fuzz targets for the readers (issue 8): one function per reader, fed
+// Fuzz targets for the readers: one function per reader, fed
 // arbitrary bytes. Each treats InputError (io/input_error.h) as the
 // expected answer to bad input and returns; anything else is a bug and
 // escapes: a crash, a sanitizer report, another exception, or a contract

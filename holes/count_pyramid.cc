@@ -12,8 +12,8 @@ namespace {
 
 // dst (w1 x h1, zeroed) += the ROUND_DOWN 2 x 2 sums of src (w0 x h0).
 // kFixed > 0 makes the channel count a compile-time constant (unrolled
-// inner loops for the nine hole counts: the speed target of issue 6 is the
-// pyramid of a 4096 x 4096 mask); 0 uses `channels`.
+// inner loops for the nine hole counts: the speed target is the pyramid
+// of a 4096 x 4096 mask); 0 uses `channels`.
 template <int kFixed, typename Src>
 void SumLevelImpl(const Src* src, int w0, int h0, int channels, int w1, int h1,
                   int32_t* dst) {

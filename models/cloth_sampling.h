@@ -1,5 +1,5 @@
 // Importance sampling of the cloth model (models/microcylinder_cloth.h) for
-// path tracers: wi given wo, with its pdf (the slides' future work; issue 9).
+// path tracers: wi given wo, with its pdf (the slides' future work).
 // Double precision only (sampling is not fitted, so no Jets).
 //
 // The scheme: a one-sample mixture over the whole sphere of directions,

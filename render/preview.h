@@ -1,4 +1,4 @@
-// Preview renders of fitted cloth (issue 9; `clothfit render`): small
+// Preview renders of fitted cloth (`clothfit render`): small
 // images, computed in linear radiance, that show a parameter set the way
 // the paper's Fig. 12 does.
 //

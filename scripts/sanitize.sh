@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer
-# (issue 8, docs/reliability.md): configures and builds build-asan/
+# (docs/reliability.md): configures and builds build-asan/
 # (-O1 -g1, CLOTHFIT_SANITIZE=ON) and runs ctest there. Any report
 # fails the test that made it. Arguments go to ctest.
 #   bash scripts/sanitize.sh            # after scripts/setup.sh

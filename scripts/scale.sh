@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scale check (issue 8): a 10-million-row measurement table, read and
+# Scale check: a 10-million-row measurement table, read and
 # fitted. Writes a virtual-gonioreflectometer table of 50 x 50 texels x
 # 64 x 64 (light, view) pairs (10.24 M rows, ~2.4 GB of CSV) under
 # data_synthetic/out/scale (or $SCALE_DIR), then fits Lafortune lobes

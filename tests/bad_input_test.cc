@@ -1,4 +1,4 @@
-// The bad-input matrix (issue 8): every reader through every command that
+// The bad-input matrix: every reader through every command that
 // uses it - measurement tables, parameter files, holes parameter files,
 // masks, image stacks - and every command's output path. Each defect gives
 // exit 2 and one message naming the file (with line and column, or the

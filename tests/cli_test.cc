@@ -562,7 +562,7 @@ TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
                           "\"termination\"", "\"gamma_s_deg\""}) {
     EXPECT_NE(fit.fit_json.find(key), std::string::npos) << key;
   }
-  // The wall time is in the summary, not the file (determinism, issue 8).
+  // The wall time is in the summary, not the file (determinism).
   EXPECT_EQ(fit.fit_json.find("seconds"), std::string::npos);
   EXPECT_EQ(fit.fit_json.find("nan"), std::string::npos);
 }
@@ -843,7 +843,7 @@ TEST(CliTest, PlotDrawsModelAgainstMeasuredRows) {
                  {"--incidence-deg", "95"});
 }
 
-// Nothing lost (issue 8): a fit killed mid-way leaves an earlier output
+// Nothing lost: a fit killed mid-way leaves an earlier output
 // untouched and no temporary file behind (outputs are written to a
 // temporary name and renamed only when complete).
 TEST(CliTest, KilledFitLeavesEarlierOutputUntouched) {

@@ -1,4 +1,4 @@
-// Determinism (issue 8): the same inputs and thread count give
+// Determinism: the same inputs and thread count give
 // bit-identical output files; different thread counts give parameters equal
 // within 1e-9 relative. Every fitter, through the command line.
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@ using testing_util::ReadText;
 using testing_util::RunClothfit;
 using testing_util::RunResult;
 
-constexpr double kThreadTolerance = 1e-9;  // relative, issue 8
+constexpr double kThreadTolerance = 1e-9;  // relative
 
 fs::path TestDir() { return testing_util::FreshTestDir("determinism_"); }
 
@@ -59,7 +59,7 @@ void ExpectJsonNear(const nlohmann::json& a, const nlohmann::json& b,
 }
 
 // No value of `j` is null: a NaN or infinity is written as null, and a fit
-// never emits either (issue 8).
+// never emits either.
 void ExpectNoNull(const nlohmann::json& j, const std::string& where) {
   EXPECT_FALSE(j.is_null()) << where;
   if (j.is_object()) {

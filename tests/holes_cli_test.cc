@@ -1,5 +1,5 @@
-// clothfit holes analyze|eval|truth and clothfit fit --model holes (issue
-// 6): files, values against the library, exit statuses.
+// clothfit holes analyze|eval|truth and clothfit fit --model holes: files,
+// values against the library, exit statuses.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Thickness (and wall colour) fits of semi-transparent textures (issue 6)
+// Thickness (and wall colour) fits of semi-transparent textures
 // to ground-truth transmittance tables made by ray traversal.
 #include "fitting/holes_fit.h"
 

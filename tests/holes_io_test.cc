@@ -1,4 +1,4 @@
-// Files of semi-transparent textures with thickness (issue 6): the count
+// Files of semi-transparent textures with thickness: the count
 // pyramids as mip-mapped OpenEXR files with a JSON index (nine channels,
 // every level, read back exactly; damaged files are clear errors) and the
 // holes parameter file.

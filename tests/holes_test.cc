@@ -1,4 +1,4 @@
-// Semi-transparent textures with thickness (issue 6): the counts, their
+// Semi-transparent textures with thickness: the counts, their
 // pyramid, Algorithm 3.1 and the extension against the ground truth, and
 // the ground truth itself against closed forms.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // The shared least-squares machinery (fitting/least_squares.h): a model
-// value that is not finite during a fit is reported with its row (issue 8).
+// value that is not finite during a fit is reported with its row.
 #include "fitting/least_squares.h"
 
 #include <ceres/ceres.h>

@@ -1,4 +1,4 @@
-// The linear solver knob (fitting/linear_solver.h, issue 7): names parse
+// The linear solver knob (fitting/linear_solver.h): names parse
 // and unknown ones are rejected (library and `fit --linear-solver`), and
 // the thread, slab and Lafortune fits recover the same parameters with
 // every solver.

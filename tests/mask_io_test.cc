@@ -1,4 +1,4 @@
-// Masks read from images (issue 6): alpha, else luminance, threshold,
+// Masks read from images: alpha, else luminance, threshold,
 // inversion, any size, and clear errors.
 #include "io/mask_io.h"
 

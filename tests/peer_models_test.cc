@@ -1,4 +1,4 @@
-// The bench's SciPy peer (benchmarks/peer/scipy_models.py, issue 7) fits
+// The bench's SciPy peer (benchmarks/peer/scipy_models.py) fits
 // the same models as clothfit: its NumPy thread, cloth and slab formulas
 // match clothfit's values on noise-free tables written here, and its cloth
 // matches the independent implementation of the conformance data

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The peer of `clothfit bench` (issue 7): the per-texel Lafortune fit done
+"""The peer of `clothfit bench`: the per-texel Lafortune fit done
 the way a user would do it today without clothfit - SciPy's least_squares
 (trust-region reflective, bounds, finite-difference Jacobians) per texel and
 channel, no lookup table.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The peer of `clothfit bench` (issue 7) for the thread, cloth, slab and
+"""The peer of `clothfit bench` for the thread, cloth, slab and
 holes fits: the same synthetic problems fitted the way a user would without
 clothfit - the model formulas of SPEC section 3 in NumPy and SciPy's
 least_squares (trust-region reflective, bounds, finite-difference
