@@ -36,7 +36,6 @@ using image_stack_internal::Fail;
 using image_stack_internal::kMaxPixels;
 using image_stack_internal::kNormalMapKey;
 namespace fs = std::filesystem;
-namespace fs = std::filesystem;
 
 using text_util::FormatNumber;
 using text_util::Lower;

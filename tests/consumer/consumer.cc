@@ -16,20 +16,13 @@
 #include <sstream>
 #include <string>
 
+#include "checks.h"
+
 namespace {
 
-int failures = 0;
-
-void Check(bool ok, const std::string& what) {
-  if (!ok) {
-    std::cerr << "FAIL: " << what << "\n";
-    ++failures;
-  }
-}
-
-bool Near(double a, double b, double rel) {
-  return std::abs(a - b) <= rel * std::abs(b) + 1e-300;
-}
+using consumer::Check;
+using consumer::failures;
+using consumer::Near;
 
 // Lafortune 1997 / Daubert 2001 eq. 2 with one lobe and no lookup table:
 // rho = l.z (rho_d + [Cx lx vx + Cy ly vy + Cz lz vz]^N).

@@ -9,19 +9,9 @@ foreach(var BUILD_DIR WORK_DIR SOURCE_DIR CONFORMANCE GENERATOR)
   endif()
 endforeach()
 
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
-  endif()
-endfunction()
-
-file(REMOVE_RECURSE ${WORK_DIR})
+include(${CMAKE_CURRENT_LIST_DIR}/consumer_steps.cmake)
+install_and_build_consumer(${BUILD_DIR} ${WORK_DIR} ${SOURCE_DIR} ${GENERATOR})
 set(prefix ${WORK_DIR}/prefix)
-run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
-run(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G ${GENERATOR}
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix})
-run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer ${CONFORMANCE}
     ${SOURCE_DIR}/fitted_lafortune.json)
 # The header-only component needs GLM alone.

@@ -11,20 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "../consumer/checks.h"
+
 namespace {
 
-int failures = 0;
-
-void Check(bool ok, const std::string& what) {
-  if (!ok) {
-    std::cerr << "FAIL: " << what << "\n";
-    ++failures;
-  }
-}
-
-bool Near(double a, double b, double rel) {
-  return std::abs(a - b) <= rel * std::abs(b) + 1e-300;
-}
+using consumer::Check;
+using consumer::failures;
+using consumer::Near;
 
 // Daubert et al. 2001, eq. 2 with one lobe and no lookup table.
 double LafortuneByHand(double diffuse, double cx, double cy, double cz,
