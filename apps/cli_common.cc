@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "holes/hole_texture.h"
 #include "models/presets.h"
 
 namespace clothfit {
@@ -35,6 +36,24 @@ ParamFile LoadModelOption(const CommandArgs& args,
               "'; 'clothfit presets' lists them");
   }
   return ParamFile{cloth, ""};
+}
+
+ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
+                             const std::string& source) {
+  ParamFile file = LoadModelOption(args);
+  if (std::holds_alternative<HolesModel>(file.params)) {
+    // Its mask, as the file names it (relative to the file's folder).
+    file.params = LoadHolesModel(file, args.Get("params"));
+  }
+  if (!ModelPredicts(file.params, quantity)) {
+    args.Fail(source + ": a " + ModelName(file.params) + " model predicts " +
+              (ModelPredicts(file.params, Quantity::kTransmittance) &&
+                       !ModelPredicts(file.params, Quantity::kBrdf)
+                   ? "transmittance"
+                   : "brdf and cosine_weighted values") +
+              ", not " + QuantityName(quantity));
+  }
+  return file;
 }
 
 std::vector<std::string> SplitList(const std::string& text) {

@@ -83,20 +83,21 @@ int RunEval(int argc, char** argv) {
   if (!mipmap && args.Has("level")) {
     args.Fail("--level goes with a parameter mip map (--params P.exr)");
   }
-  std::optional<ParamFile> model;
-  if (!mipmap) model = LoadModelOption(args);
   const Quantity quantity = ModelQuantityOption(args, "quantity");
   const std::string out_path = args.Required("out");
   ReadTableOptions read_options;
   read_options.values_optional = true;
   MeasurementTable table = ReadTable(args.Required("dirs"), read_options).table;
-  if (table.quantity != Quantity::kTransmittance) {
-    table.quantity = quantity;
-  } else if (mipmap ||
-             !ModelPredicts(model->params, Quantity::kTransmittance)) {
+  // A transmittance table is evaluated as such; any other as --quantity.
+  if (table.quantity != Quantity::kTransmittance) table.quantity = quantity;
+  if (mipmap && table.quantity == Quantity::kTransmittance) {
     args.Fail(args.Get("dirs") +
               ": a transmittance table has no incident directions to "
               "evaluate a BRDF at");
+  }
+  std::optional<ParamFile> model;
+  if (!mipmap) {
+    model = LoadEvaluableModel(args, table.quantity, args.Get("dirs"));
   }
   table.channels = 3;
   table.has_sigma = false;

@@ -37,13 +37,14 @@ int RunPlot(int argc, char** argv) {
   args.Option("window-deg", "W", "how far measured rows may lie from a panel",
               "5");
   if (!args.Parse(argc, argv, 2)) return 0;
-  const ParamFile model = LoadModelOption(args);
   const std::string out_path = args.Required("out");
   CheckWritable(out_path);
   const MeasurementTable table = ReadTable(args.Required("data")).table;
   if (table.quantity == Quantity::kTransmittance) {
     args.Fail(args.Get("data") + ": plot draws reflection, not transmittance");
   }
+  const ParamFile model =
+      LoadEvaluableModel(args, table.quantity, args.Get("data"));
   const double phi = Radians(args.GetDouble("phi-deg"));
   const double window = Radians(args.GetDouble("window-deg"));
   if (!(window > 0.0 && window < kPi / 2)) {

@@ -105,10 +105,11 @@ int RunSynth(int argc, char** argv) {
   args.Option("image-ext", "EXT", "gonio stack image format", ".exr");
   if (!args.Parse(argc, argv, 2)) return 0;
   if (args.Has("gonio")) return RunGonio(args);
-  const ParamFile model = LoadModelOption(args);
-  const std::string out_path = args.Required("out");
   SynthOptions options;
   options.quantity = ModelQuantityOption(args, "quantity");
+  const ParamFile model =
+      LoadEvaluableModel(args, options.quantity, "option '--quantity'");
+  const std::string out_path = args.Required("out");
   options.noise = args.GetDouble("noise");
   if (options.noise < 0.0 || options.noise > 1.0) {
     args.Fail("option '--noise': must be in [0, 1], got " + args.Get("noise"));

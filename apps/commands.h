@@ -37,6 +37,13 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
 ParamFile LoadModelOption(const CommandArgs& args,
                           const std::string& file_option = "params");
 
+// LoadModelOption(args) for a command that evaluates the model as
+// `quantity`: a holes file gets its mask (holes/hole_texture.h
+// LoadHolesModel); a model that does not predict `quantity` fails naming
+// `source` (the table or option it comes from).
+ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
+                             const std::string& source);
+
 // "a,b,,c" -> {"a", "b", "c"} (--fix, --free, lists of files).
 std::vector<std::string> SplitList(const std::string& text);
 // The value of option `name` as comma-separated finite numbers (at least

@@ -23,6 +23,7 @@ using testing_util::Describe;
 using testing_util::ReadText;
 using testing_util::RunClothfit;
 using testing_util::RunResult;
+using testing_util::WriteText;
 
 fs::path TestDir() { return testing_util::FreshTestDir("holes_cli_test_"); }
 
@@ -150,6 +151,46 @@ TEST(HolesCliTest, TruthThenFitRecoversTheThickness) {
   for (size_t i = 0; i < table.rows.size(); ++i) {
     EXPECT_NEAR(evaluated.rows[i].value.x, table.rows[i].value.x, 0.01);
   }
+  // So does the general eval, reading the mask the file names: the same
+  // values as holes eval (the same method and level).
+  const std::string general = (dir / "g.csv").string();
+  r = RunClothfit(
+      dir, {"eval", "--params", params, "--dirs", dirs, "--out", general});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable same = ReadTable(general).table;
+  ASSERT_EQ(same.rows.size(), evaluated.rows.size());
+  for (size_t i = 0; i < same.rows.size(); ++i) {
+    EXPECT_NEAR(same.rows[i].value.x, evaluated.rows[i].value.x, 1e-12);
+  }
+}
+
+TEST(HolesCliTest, GeneralCommandsNeedTheMaskAndTransmittance) {
+  const fs::path dir = TestDir();
+  const std::string dirs = WriteDirections(dir);
+  WriteText(dir / "no_mask.json",
+            "{\"model\": \"holes\", \"thickness_texels\": 1}");
+  testing_util::ExpectBadInput(
+      dir,
+      {"eval", "--params", (dir / "no_mask.json").string(), "--dirs", dirs,
+       "--out", (dir / "o.csv").string()},
+      {"no_mask.json", "needs its mask"});
+  // With its mask, a holes model predicts transmittance only.
+  WriteNet(dir);
+  WriteText(dir / "net.json",
+            "{\"model\": \"holes\", \"thickness_texels\": 1, \"mask\": "
+            "\"net.png\"}");
+  const std::string brdf = (dir / "brdf.csv").string();
+  WriteText(brdf, "theta_i,phi_i,theta_o,phi_o\n0,0,30,0\n");
+  testing_util::ExpectBadInput(
+      dir,
+      {"eval", "--params", (dir / "net.json").string(), "--dirs", brdf, "--out",
+       (dir / "o.csv").string()},
+      {"brdf.csv", "holes model predicts transmittance"});
+  testing_util::ExpectBadInput(
+      dir,
+      {"synth", "--params", (dir / "net.json").string(), "--out",
+       (dir / "s.csv").string()},
+      {"holes model predicts transmittance"});
 }
 
 TEST(HolesCliTest, ChartsArePngWithCsv) {
