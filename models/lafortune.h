@@ -23,6 +23,7 @@
 // the same way.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -104,12 +105,20 @@ struct LafortuneLobeT {
   Vec3<T> n = kLafortuneN.DefaultRgb<T>();
 };
 
+// A lobe's entries and fields in table order (the order of the channel
+// layout below), for the visitor and for code that indexes them.
+inline constexpr const ParamInfo* kLafortuneLobeEntries[4] = {
+    &kLafortuneCx, &kLafortuneCy, &kLafortuneCz, &kLafortuneN};
+template <typename T>
+inline constexpr Vec3<T> LafortuneLobeT<T>::*kLafortuneLobeFields[4] = {
+    &LafortuneLobeT<T>::cx, &LafortuneLobeT<T>::cy, &LafortuneLobeT<T>::cz,
+    &LafortuneLobeT<T>::n};
+
 template <typename T, typename F>
 void VisitParams(LafortuneLobeT<T>& lobe, F&& f) {
-  f(kLafortuneCx, lobe.cx);
-  f(kLafortuneCy, lobe.cy);
-  f(kLafortuneCz, lobe.cz);
-  f(kLafortuneN, lobe.n);
+  for (int q = 0; q < 4; ++q) {
+    f(*kLafortuneLobeEntries[q], lobe.*kLafortuneLobeFields<T>[q]);
+  }
 }
 
 template <typename T>
@@ -179,19 +188,36 @@ T LobePower(const T& a, const T& n) {
   }
 }
 
-// The bracket of eq. 2 for one channel, rho_d + sum_k [Cx xx + Cy yy +
-// Cz zz]^N, from its channel array x (LafortuneChannelToArray) and the
-// products xx = l_x v_x, yy = l_y v_y, zz = l_z v_z. The products' scalar
-// type G may differ from the parameters' T: a fit multiplies fixed double
-// products with Jet parameters, a third of the cost of Jet times Jet.
-template <typename T, typename G>
-T LobeSum(const T* x, int lobes, const G& xx, const G& yy, const G& zz) {
-  T sum = x[0];
+// The bracket of eq. 2, rho_d + sum_k [Cx xx + Cy yy + Cz zz]^N, for C
+// channels at once (lobes outer, channels inner), with the products
+// xx = l_x v_x, yy = l_y v_y, zz = l_z v_z. `diffuse(c)` returns rho_d of
+// channel c and `lobe(k, q, c)` entry q (Cx, Cy, Cz, N) of lobe k. The
+// products' scalar type G may differ from the parameters' T: a fit
+// multiplies fixed double products with Jet parameters, a third of the
+// cost of Jet times Jet.
+template <int C, typename T, typename G, typename Diffuse, typename Lobe>
+std::array<T, C> LobeSums(const Diffuse& diffuse, const Lobe& lobe, int lobes,
+                          const G& xx, const G& yy, const G& zz) {
+  std::array<T, C> sum;
+  for (int c = 0; c < C; ++c) sum[c] = diffuse(c);
   for (int k = 0; k < lobes; ++k) {
-    const T* lobe = x + 1 + 4 * k;
-    sum += LobePower(lobe[0] * xx + lobe[1] * yy + lobe[2] * zz, lobe[3]);
+    for (int c = 0; c < C; ++c) {
+      sum[c] += LobePower(
+          lobe(k, 0, c) * xx + lobe(k, 1, c) * yy + lobe(k, 2, c) * zz,
+          lobe(k, 3, c));
+    }
   }
   return sum;
+}
+
+// The bracket of one channel from its channel array x
+// (LafortuneChannelToArray: rho_d, then Cx, Cy, Cz, N of each lobe).
+template <typename T, typename G>
+T LobeSum(const T* x, int lobes, const G& xx, const G& yy, const G& zz) {
+  return LobeSums<1, T>(
+      [x](int) -> const T& { return x[0]; },
+      [x](int k, int q, int) -> const T& { return x[1 + 4 * k + q]; }, lobes,
+      xx, yy, zz)[0];
 }
 
 // The foreshortening l.z of eq. 2, taken as 0 below the texel's plane.
@@ -207,18 +233,18 @@ T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
   return LobeSum(x, lobes, l.x * v.x, l.y * v.y, l.z * v.z) * Foreshortening(l);
 }
 
-// f1 per channel (eq. 2). Requires at most kMaxLafortuneLobes lobes.
+// f1 per channel (eq. 2), reading the lobes where they are.
 template <typename T, typename G>
 Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
                     const Vec3<G>& v) {
-  const int lobes = static_cast<int>(p.lobes.size());
-  T x[1 + 4 * kMaxLafortuneLobes];
-  Vec3<T> f;
-  for (int c = 0; c < 3; ++c) {
-    LafortuneChannelToArray(p, c, x);
-    f[c] = LafortuneF1Channel(x, lobes, l, v);
-  }
-  return f;
+  const std::array<T, 3> sum = LobeSums<3, T>(
+      [&p](int c) -> const T& { return p.diffuse[c]; },
+      [&p](int k, int q, int c) -> const T& {
+        return (p.lobes[k].*kLafortuneLobeFields<T>[q])[c];
+      },
+      static_cast<int>(p.lobes.size()), l.x* v.x, l.y* v.y, l.z* v.z);
+  const T foreshortening(Foreshortening(l));
+  return Vec3<T>(sum[0], sum[1], sum[2]) * foreshortening;
 }
 
 // A texel's local frame: tangent, bi-normal, normal (unit, right-handed).
