@@ -14,7 +14,7 @@
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/holes_fit.h"
-#include "holes/hole_exr.h"
+#include "io/hole_exr.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"

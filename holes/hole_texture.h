@@ -1,7 +1,7 @@
 // A mask analysed for Algorithm 3.1 (David-Babin 2022) and its extension:
 // the nine count images (models/holes.h) and the cumulative run counts
 // (models/holes_distance.h), each as a summed mip pyramid down to 1 x 1
-// (holes/count_pyramid.h), and their evaluation at any level, for the
+// (io/count_pyramid.h), and their evaluation at any level, for the
 // whole tile, or trilinearly filtered between levels.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "holes/count_pyramid.h"
+#include "io/count_pyramid.h"
 #include "io/mask_io.h"
 #include "io/params_json.h"
 #include "models/holes_tile.h"

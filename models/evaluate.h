@@ -75,6 +75,17 @@ auto Value(const P& p, const Vec3<G>& wi, const Vec3<G>& wo, Quantity q) {
   return ConvertQuantity(NativeValue(p, wi, wo), info.native, q, wi.z);
 }
 
+// The cosine-weighted BRDF rho = f |wi.z| and the BRDF f of any model that
+// predicts them.
+template <typename P, typename G>
+auto Rho(const P& p, const Vec3<G>& wi, const Vec3<G>& wo) {
+  return Value(p, wi, wo, Quantity::kCosineWeighted);
+}
+template <typename P, typename G>
+auto Brdf(const P& p, const Vec3<G>& wi, const Vec3<G>& wo) {
+  return Value(p, wi, wo, Quantity::kBrdf);
+}
+
 inline bool ModelPredicts(const ModelParams& params, Quantity q) {
   return std::visit(
       [&](const auto& p) { return Predicts<std::decay_t<decltype(p)>>(q); },

@@ -22,15 +22,15 @@ cmake --build "$ASAN_DIR" -j"$(nproc)"
 
 source scripts/sanitizers/env.sh
 # Left out (the normal suite runs them):
-# - consumer_test installs the package and builds a separate CMake project
-#   against it: it tests packaging, not clothfit's code (and the consumer
-#   would need the sanitizer flags too).
+# - consumer_test and consumer_api_test install the package and build a
+#   separate CMake project against it: they test packaging, not clothfit's
+#   code (and the consumers would need the sanitizer flags too).
 # - the tests labelled slow (over 5 s in Release; tests/CMakeLists.txt) and
 #   two more that took over 60 s each under the sanitizers on a 2-core
 #   machine: long fits of the cloth and Lafortune models (410, 172, 138 and
 #   61 s under the sanitizers, 14.5 s or less in Release) whose code the
 #   other recovery tests run under the sanitizers too.
-skip='^consumer_test$'
+skip='^consumer_test$|^consumer_api_test$'
 skip+='|FarStartsConvergeToTruthOrReportFailure/polyester_satin_charmeuse '
 skip+='|^LafortuneGonio\.LookupTableLowersTheViewColourErrorByAtLeast30Percent'
 ctest --test-dir "$ASAN_DIR" --output-on-failure -j"$(nproc)" -E "$skip" -LE slow "$@"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "data_synthetic/holes_truth.h"
-#include "holes/hole_exr.h"
 #include "holes/hole_texture.h"
+#include "io/hole_exr.h"
 #include "io/mask_io.h"
 #include "io/params_json.h"
 #include "io/table.h"

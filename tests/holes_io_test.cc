@@ -7,8 +7,8 @@
 #include <string>
 
 #include "data_synthetic/holes_truth.h"
-#include "holes/hole_exr.h"
 #include "holes/hole_texture.h"
+#include "io/hole_exr.h"
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "tests/io_test_util.h"

@@ -163,6 +163,8 @@ TEST(ToyModel, ValueConvertsItsBrdfToEveryQuantity) {
     EXPECT_NEAR(f[c], p.albedo[c] * shape, 1e-15);
     EXPECT_NEAR(rho[c], p.albedo[c] * shape * wi.z, 1e-15);
   }
+  EXPECT_EQ(Rho(p, wi, wo), rho);
+  EXPECT_EQ(Brdf(p, wi, wo), f);
   // It predicts no transmittance: zero, not a guess.
   EXPECT_EQ(Value(p, wi, wo, Quantity::kTransmittance), glm::dvec3(0.0));
   EXPECT_FALSE(Predicts<MinnaertParams>(Quantity::kTransmittance));

@@ -1,4 +1,4 @@
-#include "holes/count_pyramid.h"
+#include "io/count_pyramid.h"
 
 #include <algorithm>
 #include <stdexcept>

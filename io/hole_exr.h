@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "holes/count_pyramid.h"
+#include "io/count_pyramid.h"
 
 namespace clothfit {
 

@@ -1,4 +1,4 @@
-#include "holes/hole_exr.h"
+#include "io/hole_exr.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>
