@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -36,6 +37,20 @@ void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
   args->Option("linear-solver", "S",
                "linear solver of the solver's steps: " + LinearSolverNames(),
                LinearSolverName(defaults.linear_solver));
+  args->Option("noise", "M",
+               "noise model of the values: table (the sigma column), "
+               "relative (sigma = F max(|value|, floor)) or absolute "
+               "(sigma = F); default: table with a sigma column, else "
+               "relative",
+               "");
+  args->Option("noise-level", "F",
+               "the noise level F (relative: a fraction of the value; "
+               "absolute: sigma); default: estimated from the residuals",
+               "");
+  args->Option("noise-floor", "X",
+               "relative noise: values below X weigh as X; default: 1 % of "
+               "the median |value| per channel",
+               "");
 }
 
 SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss) {
@@ -71,6 +86,44 @@ SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss) {
   if (!ParseLinearSolver(name, &s.linear_solver)) {
     args.Fail("option '--linear-solver': expected " + LinearSolverNames() +
               ", got '" + name + "'");
+  }
+  if (args.Has("noise")) {
+    const std::string noise = args.Get("noise");
+    if (noise == "table") {
+      s.noise.kind = NoiseKind::kTable;
+    } else if (noise == "relative") {
+      s.noise.kind = NoiseKind::kRelative;
+    } else if (noise == "absolute") {
+      s.noise.kind = NoiseKind::kAbsolute;
+    } else {
+      args.Fail(
+          "option '--noise': expected table, relative or absolute, "
+          "got '" +
+          noise + "'");
+    }
+  }
+  if (args.Has("noise-level")) {
+    s.noise.level = args.GetDouble("noise-level");
+    if (!(s.noise.level > 0.0) || !std::isfinite(s.noise.level)) {
+      args.Fail("option '--noise-level': must be > 0");
+    }
+    if (s.noise.kind == NoiseKind::kTable) {
+      args.Fail(
+          "option '--noise-level': the noise model 'table' takes the "
+          "sigma column as it is");
+    }
+  }
+  if (args.Has("noise-floor")) {
+    s.noise.floor = args.GetDouble("noise-floor");
+    if (!(s.noise.floor > 0.0) || !std::isfinite(s.noise.floor)) {
+      args.Fail("option '--noise-floor': must be > 0");
+    }
+    if (s.noise.kind != NoiseKind::kRelative &&
+        s.noise.kind != NoiseKind::kDefault) {
+      args.Fail(
+          "option '--noise-floor': only the relative noise model has "
+          "a floor");
+    }
   }
   // A progress line on a terminal, overwritten in place.
   if (isatty(STDERR_FILENO)) {

@@ -125,6 +125,7 @@ int RunFitLafortune(int argc, char** argv) {
   options.fit.max_iterations = solver.max_iterations;
   options.threads = solver.num_threads;
   options.fit.linear_solver = solver.linear_solver;
+  options.noise = solver.noise;
   options.mip = args.Has("mip");
   if (args.Has("tolerance")) {
     options.tolerance = args.GetDouble("tolerance");

@@ -298,7 +298,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   lsq.block_sizes.push_back(1);
   lsq.specs.back().free = options.fit_scale;
-  lsq.sigma_known = table.has_sigma;
+  const Weighting weighting(table, options.solver.noise);
+  lsq.sigma_known = weighting.LevelKnown();
 
   // With every offset_scale fixed the tangent samples never change: compute
   // them once for all starts and solves.
@@ -324,7 +325,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   const std::vector<std::shared_ptr<const RowSamples>>& row_samples =
       evaluator->samples;
   SetModelResiduals(std::shared_ptr<const ClothEvaluator>(evaluator),
-                    TableFitRows(table), blocks, &lsq);
+                    TableFitRows(table, weighting), blocks, &lsq);
 
   // Starts: a grid search over each thread's widths (and eta) with the
   // linear parameters (albedo, kd, scale) solved in closed form, by
@@ -352,6 +353,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   StartSearchProblem search;
   search.table = &table;
+  search.weighting = &weighting;
   search.contribution = [&](size_t j, const ThreadParams& p) {
     RowValues v(table.rows.size());
     const double coverage = init.threads[j].coverage;
@@ -396,6 +398,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   ClothFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
+  ReportWeighting(weighting, &result.report);
   result.params = FromVector(init, x, weave->shared_albedo);
   result.report.rows = static_cast<int>(table.rows.size());
   if (weave->shared_albedo) {  // report the tied albedos at their value

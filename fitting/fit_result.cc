@@ -1,6 +1,7 @@
 #include "fitting/fit_result.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -42,6 +43,30 @@ int CountNotReflection(const MeasurementTable& table,
   return static_cast<int>(count);
 }
 
+void ReportWeighting(const Weighting& weighting, FitReport* report) {
+  report->noise_model = NoiseKindName(weighting.kind());
+  report->noise_level = weighting.level();
+  report->noise_level_estimated = !weighting.LevelKnown();
+  report->noise_floor = weighting.floor();
+  report->minimised =
+      weighting.kind() == NoiseKind::kRelative   ? "relative error"
+      : weighting.kind() == NoiseKind::kAbsolute ? "error"
+                                                 : "error in sigmas";
+  const double f = weighting.level() > 0.0 ? weighting.level() : 1.0;
+  report->minimised_rms =
+      report->residuals > 0
+          ? f * std::sqrt(2.0 * report->final_cost / report->residuals)
+          : 0.0;
+  if (report->noise_level_estimated) {
+    // F^2 = 2 cost / dof: the weights were those of F = 1.
+    int free = 0;
+    for (const ParameterReport& p : report->parameters) free += p.free ? 1 : 0;
+    const int dof = report->residuals - free;
+    report->noise_level =
+        dof > 0 ? std::sqrt(2.0 * report->final_cost / dof) : 0.0;
+  }
+}
+
 void ReportChannelsFollowRed(const std::string& name, FitReport* report) {
   // Parameter name without its last two characters ("_r") -> red value.
   std::map<std::string, double> red;
@@ -79,6 +104,20 @@ std::string FitReportJson(const FitReport& r) {
   j["rows"] = r.rows;
   if (r.rows_not_used > 0) j["rows_not_used"] = r.rows_not_used;
   j["starts"] = r.starts;
+  if (!r.noise_model.empty()) {
+    nlohmann::ordered_json noise;
+    noise["model"] = r.noise_model;
+    if (r.noise_model != "table") {
+      noise["level"] = r.noise_level;
+      noise["level_estimated"] = r.noise_level_estimated;
+    }
+    if (r.noise_model == "relative") {
+      noise["floor"] = {r.noise_floor.x, r.noise_floor.y, r.noise_floor.z};
+    }
+    noise["minimised"] = r.minimised;
+    noise["minimised_rms"] = r.minimised_rms;
+    j["noise"] = noise;
+  }
   if (r.alternations > 0) {
     j["alternations"] = r.alternations;
     j["lut_change"] = r.lut_change;
@@ -88,6 +127,7 @@ std::string FitReportJson(const FitReport& r) {
   for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
   j["values"] = values;
   nlohmann::ordered_json stddev = nlohmann::ordered_json::object();
+  nlohmann::ordered_json sandwich = nlohmann::ordered_json::object();
   nlohmann::ordered_json fixed = nlohmann::ordered_json::array();
   nlohmann::ordered_json at_bound = nlohmann::ordered_json::array();
   for (const ParameterReport& p : r.parameters) {
@@ -96,9 +136,11 @@ std::string FitReportJson(const FitReport& r) {
       continue;
     }
     if (p.stddev >= 0.0) stddev[p.name] = p.stddev;
+    if (p.stddev_sandwich >= 0.0) sandwich[p.name] = p.stddev_sandwich;
     if (p.at_bound) at_bound.push_back(p.name);
   }
   j["stddev"] = stddev;
+  if (!sandwich.empty()) j["stddev_sandwich"] = sandwich;
   j["fixed"] = fixed;
   if (!at_bound.empty()) j["at_bound"] = at_bound;
   if (!r.identifiability.empty()) j["identifiability"] = r.identifiability;
@@ -119,6 +161,17 @@ std::string FitReportText(const FitReport& r,
                 "cost %.6g, rms %.4g, relative rms %.4g over %d residuals\n",
                 r.final_cost, r.rms, r.relative_rms, r.residuals);
   out << line;
+  if (!r.noise_model.empty()) {
+    if (r.noise_model == "table") {
+      out << "noise: the table's sigma\n";
+    } else {
+      std::snprintf(
+          line, sizeof(line), "noise: %s, level %.3g%s\n",
+          r.noise_model.c_str(), r.noise_level,
+          r.noise_level_estimated ? " (estimated from the residuals)" : "");
+      out << line;
+    }
+  }
   if (r.alternations > 0) {
     std::snprintf(line, sizeof(line),
                   "%d alternation(s); last mean relative change of the lookup "

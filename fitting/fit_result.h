@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitting/linear_solver.h"
+#include "fitting/residual_weight.h"
 #include "io/table.h"
 
 namespace clothfit {
@@ -28,6 +29,10 @@ struct SolverOptions {
   int num_threads = 1;
   // Of the Levenberg-Marquardt steps (fitting/linear_solver.h).
   LinearSolver linear_solver = LinearSolver::kDenseQr;
+  // The noise model behind the residuals' weights
+  // (fitting/residual_weight.h): by default the table's sigma, or relative
+  // noise of an estimated level for a table without sigma.
+  NoiseModel noise;
   // Told what a long fit is doing ("start 2 of 3", "candidate 4 of 12: ...");
   // may be empty.
   std::function<void(const std::string&)> progress;
@@ -38,6 +43,9 @@ struct ParameterReport {
   double value = 0.0;
   bool free = false;
   double stddev = -1.0;  // < 0: not available (fixed or not identifiable)
+  // With the noise level estimated: the sandwich estimate, which needs no
+  // noise model (least_squares.cc); < 0 otherwise.
+  double stddev_sandwich = -1.0;
   double lower = 0.0, upper = 0.0;
   bool at_bound = false;         // a free parameter ended on its bound
   bool at_search_limit = false;  // ... on a bound that only limits the search
@@ -66,6 +74,20 @@ struct FitReport {
   double seconds = 0.0;
   int residuals = 0;
   int rows = 0;  // table rows fitted
+  // The noise model the residuals were weighted with ("table", "relative",
+  // "absolute"), its level F (given, or estimated from the residuals as
+  // sqrt(2 cost / dof)) and its floor (relative).
+  std::string noise_model;
+  double noise_level = 0.0;
+  bool noise_level_estimated = false;
+  glm::dvec3 noise_floor{0.0};
+  // What the solver minimised, in words ("relative error", "error",
+  // "error in sigmas"), and its RMS over the residuals: sqrt(2 cost / m)
+  // times a given level (relative: the RMS relative error; absolute: the
+  // RMS error; table: the RMS in sigmas). relative_rms above is the data's
+  // RMS(model - data) / RMS(data), the same for every noise model.
+  std::string minimised;
+  double minimised_rms = 0.0;
   // Table rows the model cannot explain, left out of the fit (a
   // reflection-only model's transmission rows); 0 for most fits.
   int rows_not_used = 0;
@@ -75,6 +97,10 @@ struct FitReport {
   // data cannot determine, e.g. "not identifiable: eta, kd".
   std::string identifiability;
 };
+
+// Records the weighting in effect in the report, after the solve: an
+// unknown level is estimated from the final cost.
+void ReportWeighting(const Weighting& weighting, FitReport* report);
 
 // A fit's parameters and its report (ThreadFitResult = FitResult<ThreadParams>,
 // ...).

@@ -37,7 +37,8 @@ struct GridPoint {
   HolesParams params;
 };
 
-GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
+GridPoint EvaluateStart(const MeasurementTable& table,
+                        const Weighting& weighting, const HolesTile& tile,
                         const std::vector<ParameterSpec>& specs,
                         HolesParams params) {
   const size_t n = table.rows.size();
@@ -53,7 +54,7 @@ GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
     double num = 0.0, den = 0.0;
     for (size_t i = 0; i < n; ++i) {
       const TableRow& row = table.rows[i];
-      const double w = InverseVariance(row, 1.0)[c];
+      const double w = weighting.InverseVariance(row, 1.0)[c];
       num += w * ratios[i].occluded * (row.value[c] - ratios[i].transparent);
       den += w * Sqr(ratios[i].occluded);
     }
@@ -64,7 +65,7 @@ GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
   for (size_t i = 0; i < n; ++i) {
     const TableRow& row = table.rows[i];
     const glm::dvec3 model = TransmittanceOfRatios(params, ratios[i]);
-    const glm::dvec3 scale = ResidualScale(row);
+    const glm::dvec3 scale = weighting.Scale(row);
     for (int c = 0; c < table.channels; ++c) {
       point.cost +=
           0.5 * Sqr(WeightedResidual(model[c], row.value[c], scale[c]));
@@ -77,18 +78,19 @@ GridPoint EvaluateStart(const MeasurementTable& table, const HolesTile& tile,
 // The best point of a log grid over h (plus the init), and the best one at
 // least a factor 2 away from it (another basin), as starts.
 std::vector<std::vector<double>> SearchStarts(
-    const MeasurementTable& table, const HolesTile& tile,
-    const std::vector<ParameterSpec>& specs, const HolesParams& init) {
+    const MeasurementTable& table, const Weighting& weighting,
+    const HolesTile& tile, const std::vector<ParameterSpec>& specs,
+    const HolesParams& init) {
   std::vector<GridPoint> points;
   if (specs[0].free) {
     for (double h = specs[0].lower * 1.5; h < specs[0].upper;
          h *= std::pow(2.0, 0.25)) {
       HolesParams p = init;
       p.thickness_texels = h;
-      points.push_back(EvaluateStart(table, tile, specs, p));
+      points.push_back(EvaluateStart(table, weighting, tile, specs, p));
     }
   }
-  points.push_back(EvaluateStart(table, tile, specs, init));
+  points.push_back(EvaluateStart(table, weighting, tile, specs, init));
   std::sort(
       points.begin(), points.end(),
       [](const GridPoint& a, const GridPoint& b) { return a.cost < b.cost; });
@@ -130,18 +132,20 @@ HolesFitResult FitHoles(const MeasurementTable& table, const HolesTile& tile,
     lsq.specs[2].free = lsq.specs[3].free = false;
   }
   lsq.block_sizes = {FlatSize(init)};
-  lsq.sigma_known = table.has_sigma;
+  const Weighting weighting(table, options.solver.noise);
+  lsq.sigma_known = weighting.LevelKnown();
   ResidualBlocks blocks;
   blocks.used = {0};
   SetModelResiduals(
       std::make_shared<const HolesEvaluator>(HolesEvaluator{&table, &tile}),
-      TableFitRows(table), blocks, &lsq);
+      TableFitRows(table, weighting), blocks, &lsq);
 
   const std::vector<std::vector<double>> starts =
-      SearchStarts(table, tile, lsq.specs, init);
+      SearchStarts(table, weighting, tile, lsq.specs, init);
   HolesFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
+  ReportWeighting(weighting, &result.report);
   FromArray(x.data(), &result.params);
   result.report.rows = static_cast<int>(table.rows.size());
   if (table.channels == 1) {  // one channel: one wall colour

@@ -12,12 +12,24 @@
 #include "models/mip_levels.h"
 
 namespace clothfit {
+
+Weighting LafortuneWeighting(const MeasurementTable& table,
+                             const NoiseModel& noise) {
+  NoiseModel n = noise;
+  if (n.kind == NoiseKind::kDefault && !table.has_sigma) {
+    n.kind = NoiseKind::kAbsolute;
+  }
+  return Weighting(table, n);
+}
+
 LafortuneFitResult FitTexelRows(const MeasurementTable& table,
+                                const Weighting& weighting,
                                 const ViewIndex& views,
                                 const std::vector<size_t>& rows,
                                 const LafortuneMipOptions& options) {
   int skipped = 0;
-  const TexelSamples samples = CollectSamples(table, views, rows, &skipped);
+  const TexelSamples samples =
+      CollectSamples(table, weighting, views, rows, &skipped);
   LafortuneFitResult best;
   std::vector<int> counts = {options.fit.lobes};
   if (options.tolerance > 0.0) counts = {0, 1, 2, 3};
@@ -81,7 +93,8 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   const ViewIndex views(table);
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
-  LafortuneFitResult fit = FitTexelRows(table, views, rows, options);
+  LafortuneFitResult fit = FitTexelRows(
+      table, LafortuneWeighting(table, options.noise), views, rows, options);
   fit.report.parameters = LafortuneParameterReports(fit.params.params);
   return fit;
 }
@@ -138,6 +151,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
   }
   LafortuneMipResult out;
   const ViewIndex views(table);
+  const Weighting weighting = LafortuneWeighting(table, options.noise);
   out.views = views.views();
   int width = 0, height = 0;
   for (const TableRow& row : table.rows) {
@@ -223,8 +237,8 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
         try {
           LafortuneMipOptions texel_options = options;
           texel_options.fit.warm_starts = children[t];
-          out.levels[l].texels[t] =
-              FitTexelRows(table, views, texel_rows[t], texel_options);
+          out.levels[l].texels[t] = FitTexelRows(table, weighting, views,
+                                                 texel_rows[t], texel_options);
         } catch (...) {
           std::lock_guard<std::mutex> lock(progress_mutex);
           if (!error) error = std::current_exception();

@@ -45,7 +45,7 @@ ViewIndex::ViewIndex(const MeasurementTable& table) {
 }
 
 TexelSamples CollectSamples(const MeasurementTable& table,
-                            const ViewIndex& views,
+                            const Weighting& weighting, const ViewIndex& views,
                             const std::vector<size_t>& rows, int* skipped) {
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError(
@@ -67,7 +67,7 @@ TexelSamples CollectSamples(const MeasurementTable& table,
     }
     // Values as rho; sigma likewise (rho = f wi.z).
     const double to_rho = CosineWeightedFactor(table.quantity, row.wi.z);
-    const glm::dvec3 w = InverseVariance(row, to_rho);
+    const glm::dvec3 w = weighting.InverseVariance(row, to_rho);
     const int view = views.RowView(index);
     int& k = slot[views.RowPair(index)];
     if (k < 0) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/residual_weight.h"
 #include "io/table.h"
 #include "models/lafortune.h"
 
@@ -47,12 +48,12 @@ class ViewIndex {
 };
 
 // The samples of the given rows of a table, as the cosine-weighted
-// quantity, with all of the index's views (a view without samples gets
-// alpha 1 and keeps T = 1). Rows with the same (light, view) pair are
-// merged into one sample: their weighted mean value, with the sum of their
-// weights, which leaves the least-squares minimiser unchanged (sum_i w_i
-// (m - y_i)^2 = W (m - y_mean)^2 + const) and keeps the work of a pooled
-// mip-level fit at that of one texel. Rows that are not reflection (wi.z
+// quantity, weighted by `weighting`, with all of the index's views (a view
+// without samples gets alpha 1 and keeps T = 1). Rows with the same (light,
+// view) pair are merged into one sample: their weighted mean value, with the
+// sum of their weights, which leaves the least-squares minimiser unchanged
+// (sum_i w_i (m - y_i)^2 = W (m - y_mean)^2 + const) and keeps the work of a
+// pooled mip-level fit at that of one texel. Rows that are not reflection (wi.z
 // <= 0 or wo.z <= 0) are skipped and counted in *skipped (may be null).
 // A table with normal columns gives the rows' mean normal as the texel's
 // (a pooled group: the average of its texels' normals, as the paper's
@@ -60,7 +61,7 @@ class ViewIndex {
 // frame.
 // Throws InputError for a transmittance table.
 TexelSamples CollectSamples(const MeasurementTable& table,
-                            const ViewIndex& views,
+                            const Weighting& weighting, const ViewIndex& views,
                             const std::vector<size_t>& rows, int* skipped);
 
 // RMS and relative RMS error of a model over table rows (as rho). Rows

@@ -114,11 +114,12 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
       offset += lsq.block_sizes[b];
     }
   }
-  std::vector<double> stddev(x.size(), -1.0);
+  std::vector<double> stddev(x.size(), -1.0), sandwich(x.size(), -1.0);
   const int n = static_cast<int>(free_index.size());
   if (n > 0) {
     ceres::CRSMatrix crs;
-    built->problem->Evaluate(eval, nullptr, nullptr, nullptr, &crs);
+    std::vector<double> residuals;
+    built->problem->Evaluate(eval, nullptr, &residuals, nullptr, &crs);
     Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
     for (int r = 0; r < crs.num_rows; ++r) {
       for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
@@ -137,7 +138,8 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
         }
       }
       const Eigen::MatrixXd scaled = j * norms.cwiseInverse().asDiagonal();
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+          scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
       const Eigen::VectorXd sv = svd.singularValues();
       const Eigen::MatrixXd& v = svd.matrixV();
       const double s_max = sv.size() > 0 ? sv[0] : 0.0;
@@ -161,14 +163,31 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
           }
         }
       }
+      const int dof = report->residuals - n;
       if (involved.empty()) {
-        const int dof = report->residuals - n;
         const double s2 =
             lsq.sigma_known || dof <= 0 ? 1.0 : 2.0 * report->final_cost / dof;
         const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
         for (int c = 0; c < n; ++c) {
           const double var = w.row(c).squaredNorm() / (norms[c] * norms[c]);
           stddev[free_index[c]] = std::sqrt(var * s2);
+        }
+        // The sandwich (White's heteroscedasticity-consistent estimate,
+        // HC1): (J^T J)^-1 J^T diag(r^2) J (J^T J)^-1 n / (n - p), valid
+        // whatever the noise level and its variation across rows. With
+        // J D^-1 = U S V^T it is D^-1 A A^T D^-1, A = V S^-1 U^T diag(r).
+        if (!lsq.sigma_known && dof > 0 &&
+            static_cast<int>(residuals.size()) == j.rows()) {
+          const Eigen::Map<const Eigen::VectorXd> r(residuals.data(),
+                                                    residuals.size());
+          const Eigen::MatrixXd a =
+              w * (svd.matrixU().transpose() * r.asDiagonal());
+          const double hc1 =
+              static_cast<double>(report->residuals) / static_cast<double>(dof);
+          for (int c = 0; c < n; ++c) {
+            sandwich[free_index[c]] =
+                std::sqrt(a.row(c).squaredNorm() * hc1) / norms[c];
+          }
         }
       } else {
         report->identifiability = "not identifiable:";
@@ -191,6 +210,7 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
                                spec.upper - p.value < 1e-9 * span);
     p.at_search_limit = p.at_bound && !spec.physical_bounds;
     p.stddev = stddev[i];
+    p.stddev_sandwich = sandwich[i];
     report->parameters.push_back(p);
   }
 }
@@ -280,19 +300,16 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   best.final_cost = HUGE_VAL;
   std::vector<double> best_x;
   int total_iterations = 0;
-  for (size_t s = 0; s < starts.size(); ++s) {
-    if (options.progress) {
-      options.progress("start " + std::to_string(s + 1) + " of " +
-                       std::to_string(starts.size()));
-    }
-    std::vector<double> x = starts[s];
-    for (size_t i = 0; i < x.size(); ++i) {
+  // One solve from x (clamped into the bounds); its summary.
+  auto solve = [&](std::vector<double>* x) {
+    for (size_t i = 0; i < x->size(); ++i) {
       if (lsq.specs[i].free) {
-        x[i] = std::min(std::max(x[i], lsq.specs[i].lower), lsq.specs[i].upper);
+        (*x)[i] =
+            std::min(std::max((*x)[i], lsq.specs[i].lower), lsq.specs[i].upper);
       }
     }
     BuiltProblem built;
-    Build(lsq, options, &x, &built);
+    Build(lsq, options, x, &built);
     ceres::Solver::Options solver_options;
     SetCeresLinearSolver(options.linear_solver, &solver_options);
     solver_options.max_num_iterations = options.max_iterations;
@@ -307,8 +324,22 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     ceres::Solver::Summary summary;
     ceres::Solve(solver_options, built.problem.get(), &summary);
     total_iterations += static_cast<int>(summary.iterations.size());
-    bool finite = std::isfinite(summary.final_cost);
-    for (double v : x) finite = finite && std::isfinite(v);
+    return summary;
+  };
+  auto finite_x = [](const std::vector<double>& x) {
+    for (double v : x) {
+      if (!std::isfinite(v)) return false;
+    }
+    return true;
+  };
+  for (size_t s = 0; s < starts.size(); ++s) {
+    if (options.progress) {
+      options.progress("start " + std::to_string(s + 1) + " of " +
+                       std::to_string(starts.size()));
+    }
+    std::vector<double> x = starts[s];
+    const ceres::Solver::Summary summary = solve(&x);
+    const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
     if (usable && summary.final_cost < best.final_cost) {
       best = FitReport();
@@ -334,6 +365,37 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
             finite ? summary.message
                    : "non-finite cost or parameters: " + summary.message;
       }
+    }
+  }
+  // Weights that depend on the model (relative noise): solve again with
+  // the weights of the best solution until they settle (iteratively
+  // reweighted least squares; a pass changes x by O(F) of its first
+  // change, so two or three passes reach the solver's precision).
+  if (lsq.reweight && !best_x.empty()) {
+    for (int pass = 0; pass < 3; ++pass) {
+      lsq.reweight(best_x);
+      std::vector<double> x = best_x;
+      const ceres::Solver::Summary summary = solve(&x);
+      if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost) ||
+          !finite_x(x)) {
+        break;  // keep the last usable solution (its weights differ a little)
+      }
+      double change = 0.0;
+      for (size_t i = 0; i < x.size(); ++i) {
+        const double span = lsq.specs[i].upper - lsq.specs[i].lower;
+        const double scale = std::isfinite(span) && span > 0.0
+                                 ? std::min(span, std::abs(best_x[i]) + 1e-12)
+                                 : std::abs(best_x[i]) + 1e-12;
+        change = std::max(change, std::abs(x[i] - best_x[i]) / scale);
+      }
+      best.converged = summary.termination_type == ceres::CONVERGENCE;
+      best.termination =
+          ceres::TerminationTypeToString(summary.termination_type);
+      best.message = summary.message;
+      best.final_cost = summary.final_cost;
+      best.residuals = summary.num_residuals;
+      best_x = x;
+      if (change < 1e-9) break;
     }
   }
   best.starts = static_cast<int>(starts.size());

@@ -70,9 +70,11 @@ inline constexpr ParamInfo kFitScale = {
 struct LeastSquaresProblem {
   std::vector<ParameterSpec> specs;  // one per entry of x
   std::vector<int> block_sizes;      // sum = specs.size()
-  // Residuals are (model - measured) / sigma with sigma given by the data;
-  // false: sigma is unknown (1), and the covariance is scaled by the
-  // residual variance 2 cost / (residuals - free parameters).
+  // Residuals are (model - measured) / sigma with sigma known in data
+  // units (Weighting::LevelKnown); false: sigma is known up to its level F
+  // (weights of F = 1), the covariance is scaled by the residual variance
+  // 2 cost / (residuals - free parameters), and the report also gives the
+  // sandwich estimate.
   bool sigma_known = true;
   // Adds every residual block; `loss` (may be null) goes to each of them.
   std::function<void(const std::vector<double*>& blocks,
@@ -86,6 +88,10 @@ struct LeastSquaresProblem {
                      std::vector<double>* measured,
                      std::vector<const TableRow*>* rows)>
       predict;
+  // If set (weights that depend on the model's value, relative noise):
+  // recomputes the residuals' weights at x; the solver then solves again
+  // from the best solution until the weights settle.
+  std::function<void(const std::vector<double>& x)> reweight;
 };
 
 // Solves from each start in `starts` (each a full x), keeps the lowest cost,

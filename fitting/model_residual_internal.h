@@ -26,12 +26,16 @@
 
 namespace clothfit {
 
-// One row of a fit: the table row, the quantity it holds and the number
-// of its channels that are residuals (1 or 3).
+// One row of a fit: the table row, the quantity it holds, the number of
+// its channels that are residuals (1 or 3), the weighting of its table
+// (which must outlive the fit) and the factors sqrt(weight) / sigma of its
+// residuals (Weighting::Scale, then ScaleAt the fitted model).
 struct FitRow {
   const TableRow* row;
   Quantity quantity;
   int channels;
+  const Weighting* weighting;
+  glm::dvec3 scale;
 };
 
 // The blocks a fit's residuals use: indices into LeastSquaresProblem's
@@ -54,7 +58,7 @@ class ModelResidual {
       : evaluator_(std::move(evaluator)),
         index_(index),
         measured_(row.row->value),
-        scale_(ResidualScale(*row.row)),
+        scale_(row.scale),
         channels_(row.channels),
         scale_block_(scale_block) {}
 
@@ -87,26 +91,28 @@ class ModelResidual {
   int scale_block_;
 };
 
-// Sets lsq->add_residuals and lsq->predict for `rows` evaluated by
-// `evaluator` (row i of the evaluator is rows[i]) over `blocks`.
+// Sets lsq->add_residuals, lsq->predict and lsq->reweight for `rows`
+// evaluated by `evaluator` (row i of the evaluator is rows[i]) over
+// `blocks`.
 template <class Evaluator>
 void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
-                       std::vector<FitRow> rows, ResidualBlocks blocks,
+                       std::vector<FitRow> rows_in, ResidualBlocks blocks,
                        LeastSquaresProblem* lsq) {
   const std::vector<int> sizes = lsq->block_sizes;
+  // Shared by the three: reweight changes the scales the next solve uses.
+  auto rows = std::make_shared<std::vector<FitRow>>(std::move(rows_in));
   lsq->add_residuals = [=](const std::vector<double*>& x,
                            ceres::LossFunction* loss, ceres::Problem* problem) {
     std::vector<double*> used;
     for (int b : blocks.used) used.push_back(x[b]);
-    for (size_t i = 0; i < rows.size(); ++i) {
+    for (size_t i = 0; i < rows->size(); ++i) {
       problem->AddResidualBlock(ModelResidual<Evaluator>::Create(
-                                    evaluator, i, rows[i], blocks, sizes),
+                                    evaluator, i, (*rows)[i], blocks, sizes),
                                 loss, used);
     }
   };
-  lsq->predict = [=](const std::vector<double>& x, std::vector<double>* model,
-                     std::vector<double>* measured,
-                     std::vector<const TableRow*>* row_of) {
+  // The model value of every row at x, in data units.
+  auto values = [=](const std::vector<double>& x) {
     std::vector<const double*> used;
     std::vector<int> offsets(sizes.size() + 1, 0);
     for (size_t b = 0; b < sizes.size(); ++b) {
@@ -114,23 +120,48 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     }
     for (int b : blocks.used) used.push_back(x.data() + offsets[b]);
     const double s = blocks.scale >= 0 ? used[blocks.scale][0] : 1.0;
-    for (size_t i = 0; i < rows.size(); ++i) {
-      const glm::dvec3 m = (*evaluator)(used.data(), i) * s;
-      for (int c = 0; c < rows[i].channels; ++c) {
-        model->push_back(m[c]);
-        measured->push_back(rows[i].row->value[c]);
-        if (row_of) row_of->push_back(rows[i].row);
+    std::vector<glm::dvec3> out(rows->size());
+    for (size_t i = 0; i < rows->size(); ++i) {
+      out[i] = (*evaluator)(used.data(), i) * s;
+    }
+    return out;
+  };
+  lsq->predict = [=](const std::vector<double>& x, std::vector<double>* model,
+                     std::vector<double>* measured,
+                     std::vector<const TableRow*>* row_of) {
+    const std::vector<glm::dvec3> m = values(x);
+    for (size_t i = 0; i < rows->size(); ++i) {
+      const FitRow& row = (*rows)[i];
+      for (int c = 0; c < row.channels; ++c) {
+        model->push_back(m[i][c]);
+        measured->push_back(row.row->value[c]);
+        if (row_of) row_of->push_back(row.row);
       }
+    }
+  };
+  bool depends = false;
+  for (const FitRow& row : *rows) {
+    depends = depends || row.weighting->DependsOnModel();
+  }
+  if (!depends) return;
+  lsq->reweight = [=](const std::vector<double>& x) {
+    const std::vector<glm::dvec3> m = values(x);
+    for (size_t i = 0; i < rows->size(); ++i) {
+      FitRow& row = (*rows)[i];
+      row.scale = row.weighting->ScaleAt(*row.row, m[i]);
     }
   };
 }
 
-// One FitRow per row of a table, with the table's quantity and channels.
-inline std::vector<FitRow> TableFitRows(const MeasurementTable& table) {
+// One FitRow per row of a table, with the table's quantity and channels,
+// weighted by `weighting` (which must outlive them).
+inline std::vector<FitRow> TableFitRows(const MeasurementTable& table,
+                                        const Weighting& weighting) {
   std::vector<FitRow> rows;
   rows.reserve(table.rows.size());
   for (const TableRow& row : table.rows) {
-    rows.push_back({&row, table.quantity, table.channels});
+    rows.push_back({&row, table.quantity, table.channels, &weighting,
+                    weighting.Scale(row)});
   }
   return rows;
 }

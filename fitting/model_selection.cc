@@ -206,8 +206,9 @@ ClothSelection SelectClothModel(const MeasurementTable& table,
     o.shared_albedo = c.shared_albedo;
     o.fix.insert(o.fix.end(), c.extra_fix.begin(), c.extra_fix.end());
     ClothFitResult fit = FitCloth(table, c.init, o);
-    out.report.candidates.push_back(Describe(
-        c.description, c.samples, fit.report, table.has_sigma, tolerance));
+    out.report.candidates.push_back(
+        Describe(c.description, c.samples, fit.report,
+                 !fit.report.noise_level_estimated, tolerance));
     fits.emplace_back(std::move(fit), c.init);
     if (out.report.candidates.back().meets_tolerance) break;
   }
@@ -233,8 +234,9 @@ ThreadSelection SelectThreadModel(const MeasurementTable& table,
       o.init->kd = kd_mode;
     }
     fits.push_back(FitThread(table, o));
-    out.report.candidates.push_back(Describe(
-        names[kd_mode], 0, fits.back().report, table.has_sigma, tolerance));
+    out.report.candidates.push_back(
+        Describe(names[kd_mode], 0, fits.back().report,
+                 !fits.back().report.noise_level_estimated, tolerance));
     if (out.report.candidates.back().meets_tolerance) break;
   }
   out.report.chosen = Choose(&out.report);

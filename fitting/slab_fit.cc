@@ -23,7 +23,7 @@ using Sample = FitRow;
 // The squared residual factors (fitting/residual_weight.h) of the channels
 // that have a residual, 0 for the others.
 glm::dvec3 Weight2(const Sample& s) {
-  const glm::dvec3 scale = ResidualScale(*s.row);
+  const glm::dvec3& scale = s.scale;
   return s.channels == 1 ? glm::dvec3(scale.x * scale.x, 0.0, 0.0)
                          : scale * scale;
 }
@@ -54,10 +54,13 @@ SlabParams FromX(const std::vector<double>& x, bool shared_tau,
   return p;
 }
 
-std::vector<Sample> Samples(const std::vector<MeasurementTable>& tables) {
+std::vector<Sample> Samples(const std::vector<MeasurementTable>& tables,
+                            const std::vector<Weighting>& weightings) {
   std::vector<Sample> samples;
-  for (const MeasurementTable& table : tables) {
-    for (const FitRow& row : TableFitRows(table)) samples.push_back(row);
+  for (size_t t = 0; t < tables.size(); ++t) {
+    for (const FitRow& row : TableFitRows(tables[t], weightings[t])) {
+      samples.push_back(row);
+    }
   }
   return samples;
 }
@@ -246,9 +249,10 @@ SlabValidity Validate(const std::vector<Sample>& samples, int channels,
                      v.chi2_per_dof, v.chi2_limit));
   } else {
     v.notes.push_back(Format(
-        "The tables give no sigma, so the model's error cannot be compared "
-        "with the noise (relative rms error %.4g).",
-        ss > 0.0 ? std::sqrt(se / ss) : 0.0));
+        "The noise level is not known (it is estimated from the residuals, "
+        "level %.3g), so the model's error cannot be compared with the "
+        "noise (relative rms error %.4g).",
+        report.noise_level, ss > 0.0 ? std::sqrt(se / ss) : 0.0));
   }
   v.above_paper_tau_limit = v.max_tau > kSlabPaperTauLimit;
   v.estimated_model_error = SlabParamsSingleScatterError(p);
@@ -310,8 +314,15 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
     if (table.quantity != Quantity::kTransmittance) channels = table.channels;
   }
   if (channels == 0) channels = tables.front().channels;
-  const bool sigma_known = tables.front().has_sigma;
+  // One noise model for all tables, each weighted by its own values
+  // (fitting/residual_weight.h); an unknown level is one for all.
+  std::vector<Weighting> weightings;
   for (const MeasurementTable& table : tables) {
+    weightings.emplace_back(table, options.solver.noise);
+  }
+  const bool sigma_known = weightings.front().LevelKnown();
+  for (size_t t = 0; t < tables.size(); ++t) {
+    const MeasurementTable& table = tables[t];
     if (table.rows.empty()) throw InputError("slab fit: a table has no rows");
     RequireWeightedRows(table);
     const bool one_channel_direct =
@@ -323,10 +334,11 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
           "one-channel transmittance table goes with rgb tables only when "
           "tau is shared)");
     }
-    if (table.has_sigma != sigma_known) {
+    if (weightings[t].kind() != weightings.front().kind()) {
       throw InputError(
           "slab fit: some tables give sigma and others do not; residuals "
-          "would mix normalised and raw units");
+          "would mix normalised and raw units (give all tables sigma, or "
+          "choose a noise model)");
     }
   }
   const bool one_channel = channels == 1;
@@ -349,7 +361,7 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   }
   lsq.block_sizes = {FlatSize(SlabParams())};
   lsq.sigma_known = sigma_known;
-  const std::vector<Sample> samples = Samples(tables);
+  const std::vector<Sample> samples = Samples(tables, weightings);
   ResidualBlocks blocks;
   blocks.used = {0};
   SetModelResiduals(
@@ -362,6 +374,7 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   SlabFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
+  ReportWeighting(weightings.front(), &result.report);
   result.params = FromX(x, shared_tau, one_channel);
   for (const MeasurementTable& table : tables) {
     result.report.rows += static_cast<int>(table.rows.size());

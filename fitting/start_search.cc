@@ -28,7 +28,8 @@ std::vector<double> WidthGrid(bool free, double init) {
 // the search is then assembled from these sums, independent of the rows.
 class Gram {
  public:
-  Gram(const MeasurementTable& table, const std::vector<RowValues>& vectors)
+  Gram(const MeasurementTable& table, const Weighting& weighting,
+       const std::vector<RowValues>& vectors)
       : n_(vectors.size()), channels_(table.channels) {
     g_.assign(channels_ * n_ * n_, 0.0);
     b_.assign(channels_ * n_, 0.0);
@@ -36,7 +37,7 @@ class Gram {
     std::vector<double> column(n_);
     for (size_t i = 0; i < table.rows.size(); ++i) {
       const TableRow& row = table.rows[i];
-      const glm::dvec3 weight = InverseVariance(row, 1.0);
+      const glm::dvec3 weight = weighting.InverseVariance(row, 1.0);
       for (int c = 0; c < channels_; ++c) {
         const double w = weight[c];
         const double y = row.value[c];
@@ -134,7 +135,7 @@ class Search {
       p.kd = 1.0;
       t.r = add(minus_surface(problem.contribution(j, p)));
     }
-    gram_ = std::make_unique<Gram>(*problem.table, vectors);
+    gram_ = std::make_unique<Gram>(*problem.table, *problem.weighting, vectors);
   }
 
   const ThreadVectors& Thread(size_t j) const { return threads_[j]; }

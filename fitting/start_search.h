@@ -18,6 +18,7 @@
 #include <functional>
 #include <vector>
 
+#include "fitting/residual_weight.h"
 #include "io/table.h"
 #include "models/microcylinder_thread.h"
 
@@ -27,6 +28,7 @@ using RowValues = std::vector<glm::dvec3>;  // model value per row, rgb
 
 struct StartSearchProblem {
   const MeasurementTable* table = nullptr;
+  const Weighting* weighting = nullptr;  // of the table's rows
   // Thread j's contribution to each row's model value with parameters p.
   std::function<RowValues(size_t j, const ThreadParams& p)> contribution;
   std::vector<ThreadParams> init;  // per thread; fixed entries keep these

@@ -47,7 +47,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   lsq.block_sizes = {kThreadFlatSize, 1};
   lsq.specs.push_back(SpecOf(kFitScale, kFitScale.name));
   lsq.specs.back().free = options.fit_scale;
-  lsq.sigma_known = table.has_sigma;
+  const Weighting weighting(table, options.solver.noise);
+  lsq.sigma_known = weighting.LevelKnown();
   ResidualBlocks blocks;
   blocks.used = {0};
   if (options.fit_scale) {
@@ -56,13 +57,14 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   }
   SetModelResiduals(
       std::make_shared<const ThreadEvaluator>(ThreadEvaluator{&table}),
-      TableFitRows(table), blocks, &lsq);
+      TableFitRows(table, weighting), blocks, &lsq);
 
   // Starts: a grid search over the widths (and eta) with the linear
   // parameters (albedo, kd, scale) solved in closed form; the init's values
   // join the grid, fixed entries keep them (fitting/start_search.h).
   StartSearchProblem search;
   search.table = &table;
+  search.weighting = &weighting;
   search.init = {options.init ? *options.init : ThreadParams()};
   search.contribution = [&](size_t, const ThreadParams& p) {
     RowValues v(table.rows.size());
@@ -89,6 +91,7 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   ThreadFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
+  ReportWeighting(weighting, &result.report);
   FromArray(x.data(), &result.params);
   result.report.rows = static_cast<int>(table.rows.size());
   if (table.channels == 1) {  // one channel: one albedo

@@ -615,6 +615,56 @@ TEST(CliTest, FitBadUsage) {
                  {"fit", "--model", "thread", "--data", data, "--loss", "l1",
                   "--out", out},
                  {"--loss"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--noise",
+                  "gaussian", "--out", out},
+                 {"--noise", "gaussian"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--noise-level",
+                  "-0.01", "--out", out},
+                 {"--noise-level"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--noise",
+                  "absolute", "--noise-floor", "0.1", "--out", out},
+                 {"--noise-floor"});
+}
+
+// A table without a sigma column is fitted with relative noise of an
+// estimated level, and the fit object says so; the level comes out near
+// the table's (1 %); --noise table on such a table is bad input naming
+// it; a given level is used as it is.
+TEST(CliTest, FitWithoutSigmaUsesRelativeNoiseAndReportsItsLevel) {
+  const fs::path dir = DirWithThreadTable();
+  MeasurementTable table = ReadTable((dir / "T.csv").string()).table;
+  ASSERT_TRUE(table.has_sigma);
+  table.has_sigma = false;
+  const std::string data = (dir / "nosigma.csv").string();
+  WriteTable(table, data);
+  const std::string out = (dir / "fit.json").string();
+  const RunResult r = RunClothfit(
+      dir, {"fit", "--model", "thread", "--data", data, "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.out.find("noise: relative"), std::string::npos) << r.out;
+  nlohmann::json fit = nlohmann::json::parse(ReadText(out))["fit"];
+  EXPECT_EQ(fit["noise"]["model"], "relative");
+  EXPECT_TRUE(fit["noise"]["level_estimated"].get<bool>());
+  EXPECT_NEAR(fit["noise"]["level"].get<double>(), 0.01, 0.001);
+  EXPECT_TRUE(fit.contains("stddev_sandwich"));
+  EXPECT_GT(fit["stddev"]["kd"].get<double>(), 0.0);
+
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--noise",
+                  "table", "--out", out},
+                 {"nosigma.csv", "sigma"});
+
+  const RunResult given =
+      RunClothfit(dir, {"fit", "--model", "thread", "--data", data,
+                        "--noise-level", "0.01", "--out", out});
+  ASSERT_EQ(given.status, 0) << Describe(given);
+  fit = nlohmann::json::parse(ReadText(out))["fit"];
+  EXPECT_FALSE(fit["noise"]["level_estimated"].get<bool>());
+  EXPECT_EQ(fit["noise"]["level"].get<double>(), 0.01);
+  EXPECT_FALSE(fit.contains("stddev_sandwich"));
 }
 
 // Tables that leave a fit nothing to fit are bad input (exit 2) for every

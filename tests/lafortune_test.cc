@@ -47,7 +47,8 @@ LafortuneModel TruthModel(const std::vector<glm::dvec3>& views) {
 TexelSamples AllSamples(const MeasurementTable& t) {
   std::vector<size_t> rows(t.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
-  return CollectSamples(t, ViewIndex(t), rows, nullptr);
+  return CollectSamples(t, LafortuneWeighting(t, NoiseModel()), ViewIndex(t),
+                        rows, nullptr);
 }
 
 // The largest relative difference of two models over lights x views.
@@ -432,7 +433,9 @@ TEST(LafortuneMip, GroupFitEqualsDirectFitOfPooledSamples) {
     }
   }
   const LafortuneFitResult direct = FitLafortune(
-      CollectSamples(table, ViewIndex(table), rows, nullptr), direct_options);
+      CollectSamples(table, LafortuneWeighting(table, NoiseModel()),
+                     ViewIndex(table), rows, nullptr),
+      direct_options);
   const LafortuneFitResult& group = r.levels[1].texels[0 * 2 + 1];
   EXPECT_EQ(group.report.rows, static_cast<int>(rows.size()));
   double rms = 0.0, relative_rms = 0.0;
@@ -458,7 +461,8 @@ TEST(LafortuneMip, MergingRepeatedPairsLeavesTheFitUnchanged) {
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   const ViewIndex index(table);
-  const TexelSamples merged = CollectSamples(table, index, rows, nullptr);
+  const TexelSamples merged = CollectSamples(
+      table, LafortuneWeighting(table, NoiseModel()), index, rows, nullptr);
   EXPECT_EQ(merged.size(), table.rows.size() / 2);
   TexelSamples apart;  // every row its own sample
   apart.views = index.views();

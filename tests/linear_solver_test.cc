@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fitting/lafortune_fit.h"
+#include "fitting/lafortune_mip.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "models/presets.h"
@@ -110,7 +111,8 @@ TEST(LinearSolver, LafortuneFitsRecoverTheTruthWithEverySolver) {
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   const TexelSamples samples =
-      CollectSamples(table, ViewIndex(table), rows, nullptr);
+      CollectSamples(table, LafortuneWeighting(table, NoiseModel()),
+                     ViewIndex(table), rows, nullptr);
   for (LinearSolver s : AllLinearSolvers()) {
     LafortuneFitOptions options;
     options.lobes = 1;

@@ -94,12 +94,13 @@ FitResult<MinnaertParams> FitMinnaert(const MeasurementTable& table,
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(MinnaertParams());
   lsq.block_sizes = {FlatSize(start)};
-  lsq.sigma_known = table.has_sigma;
+  const Weighting weighting(table, NoiseModel());
+  lsq.sigma_known = weighting.LevelKnown();
   ResidualBlocks blocks;
   blocks.used = {0};
   SetModelResiduals(
       std::make_shared<const MinnaertEvaluator>(MinnaertEvaluator{&table}),
-      TableFitRows(table), blocks, &lsq);
+      TableFitRows(table, weighting), blocks, &lsq);
   std::vector<double> x(FlatSize(start));
   ToArray(start, x.data());
   FitResult<MinnaertParams> result;

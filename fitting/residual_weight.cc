@@ -1,0 +1,100 @@
+#include "fitting/residual_weight.h"
+
+#include <algorithm>
+#include <glm/common.hpp>
+#include <vector>
+
+#include "io/input_error.h"
+
+namespace clothfit {
+
+const char* NoiseKindName(NoiseKind kind) {
+  switch (kind) {
+    case NoiseKind::kTable:
+      return "table";
+    case NoiseKind::kRelative:
+      return "relative";
+    case NoiseKind::kAbsolute:
+      return "absolute";
+    case NoiseKind::kDefault:
+      break;
+  }
+  return "default";
+}
+
+Weighting::Weighting(const MeasurementTable& table, const NoiseModel& noise)
+    : kind_(noise.kind), level_(noise.level) {
+  const std::string name = table.source.empty() ? "table" : table.source;
+  if (!(noise.level >= 0.0) || !std::isfinite(noise.level)) {
+    throw InputError("noise level: must be >= 0, got " +
+                     std::to_string(noise.level));
+  }
+  if (!(noise.floor >= 0.0) || !std::isfinite(noise.floor)) {
+    throw InputError("noise floor: must be >= 0, got " +
+                     std::to_string(noise.floor));
+  }
+  if (kind_ == NoiseKind::kDefault) {
+    kind_ = table.has_sigma ? NoiseKind::kTable : NoiseKind::kRelative;
+  }
+  if (kind_ == NoiseKind::kTable) {
+    if (!table.has_sigma) {
+      throw InputError(name + ": no sigma column for the noise model 'table'");
+    }
+    level_ = 0.0;
+  }
+  if (kind_ != NoiseKind::kRelative) return;
+  if (noise.floor > 0.0) {
+    floor_ = glm::dvec3(noise.floor);
+    return;
+  }
+  // The default floor: 1 % of the channel's median |value| (of its largest
+  // where half the values are 0; 1 where all are). A reflectance table
+  // spans decades (a thread's highlight is 1,000x its median), so a floor
+  // tied to the largest value would weigh most rows alike.
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> values;
+    values.reserve(table.rows.size());
+    for (const TableRow& row : table.rows)
+      values.push_back(std::abs(row.value[c]));
+    double typical = 0.0;
+    if (!values.empty()) {
+      auto middle = values.begin() + values.size() / 2;
+      std::nth_element(values.begin(), middle, values.end());
+      typical = *middle;
+      if (!(typical > 0.0))
+        typical = *std::max_element(values.begin(), values.end());
+    }
+    floor_[c] = typical > 0.0 ? 0.01 * typical : 1.0;
+  }
+}
+
+glm::dvec3 Weighting::Sigma(const TableRow& row) const {
+  const double f = level_ > 0.0 ? level_ : 1.0;
+  switch (kind_) {
+    case NoiseKind::kTable:
+      return row.sigma;
+    case NoiseKind::kRelative:
+      return f * glm::max(glm::abs(row.value), floor_);
+    default:
+      return glm::dvec3(f);
+  }
+}
+
+glm::dvec3 Weighting::ScaleAt(const TableRow& row,
+                              const glm::dvec3& model) const {
+  if (kind_ != NoiseKind::kRelative) return Scale(row);
+  const double f = level_ > 0.0 ? level_ : 1.0;
+  const glm::dvec3 sigma = f * glm::max(glm::abs(model), floor_);
+  return glm::dvec3(std::sqrt(row.weight)) / sigma;
+}
+
+glm::dvec3 Weighting::Scale(const TableRow& row) const {
+  return glm::dvec3(std::sqrt(row.weight)) / Sigma(row);
+}
+
+glm::dvec3 Weighting::InverseVariance(const TableRow& row, double k) const {
+  const glm::dvec3 sigma = Sigma(row) * k;
+  return row.weight / (sigma * sigma);
+}
+
+}  // namespace clothfit
