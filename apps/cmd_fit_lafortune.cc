@@ -149,6 +149,18 @@ int RunFitLafortune(int argc, char** argv) {
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
     const LafortuneFitResult fit = FitLafortuneTable(table, options);
     WarnNotReflection(fit.report, "lafortune");
+    if (options.fit.lookup_table &&
+        fit.report.lut_views_fitted < fit.report.lut_views) {
+      std::fprintf(stderr,
+                   "warning: lookup table: %d of %d views have at least %d "
+                   "samples (%.1f rows per view); the others take T "
+                   "interpolated from those%s\n",
+                   fit.report.lut_views_fitted, fit.report.lut_views,
+                   options.fit.min_lut_samples,
+                   static_cast<double>(fit.report.rows) /
+                       std::max(1, fit.report.lut_views),
+                   fit.report.lut_views_fitted == 0 ? " (none: T = 1)" : "");
+    }
     return FinishFit(args, fit.params, fit.report, {}, FitExtras());
   }
 
@@ -170,11 +182,11 @@ int RunFitLafortune(int argc, char** argv) {
     std::printf(
         "  level %zu: %dx%d, %zu samples, mean relative rms %.4g (per-view "
         "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d, per fit %.1f "
-        "alternations, %.0f solver iterations\n",
+        "alternations, %.0f solver iterations, %d at a search limit\n",
         l, level.width, level.height, level.samples, level.mean_relative_rms,
         level.mean_view_relative_rms, level.lobe_counts[0],
         level.lobe_counts[1], level.lobe_counts[2], level.lobe_counts[3],
-        level.mean_alternations, level.mean_iterations);
+        level.mean_alternations, level.mean_iterations, level.at_search_limit);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
@@ -186,6 +198,13 @@ int RunFitLafortune(int argc, char** argv) {
               << summary.first_not_converged
               << " (raise --alternations or --lut-threshold)\n";
   }
+  if (summary.at_search_limit > 0) {
+    // The rule of the thread and cloth fits: written, but not converged.
+    std::cerr << "error: " << summary.at_search_limit << " of " << result.fits
+              << " texel fit(s) have a lobe entry at a search limit "
+                 "(not converged); the first at "
+              << summary.first_at_search_limit << "\n";
+  }
   if (summary.unusable > 0) {
     std::cerr << "error: " << summary.unusable
               << " texel fit(s) reached no usable solution (zero in the "
@@ -193,7 +212,7 @@ int RunFitLafortune(int argc, char** argv) {
               << summary.first_unusable << "\n";
     return 1;
   }
-  return 0;
+  return summary.at_search_limit > 0 ? 1 : 0;
 }
 
 }  // namespace clothfit

@@ -189,6 +189,7 @@ ClothParams FromVector(const ClothParams& layout, const std::vector<double>& x,
     c.threads[j].coverage = t[kThreadFlatSize];
     for (double& o : c.threads[j].offsets_deg) o *= t[kThreadFlatSize + 1];
   }
+  c.scale = x.back();  // 1 unless fitted (--fit-scale)
   return c;
 }
 

@@ -122,6 +122,8 @@ std::string FitReportJson(const FitReport& r) {
     j["alternations"] = r.alternations;
     j["lut_change"] = r.lut_change;
     j["view_relative_rms"] = r.view_relative_rms;
+    j["lut_views"] = r.lut_views;
+    j["lut_views_fitted"] = r.lut_views_fitted;
   }
   nlohmann::ordered_json values = nlohmann::ordered_json::object();
   for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
@@ -163,14 +165,17 @@ std::string FitReportText(const FitReport& r,
   out << line;
   if (!r.noise_model.empty()) {
     if (r.noise_model == "table") {
-      out << "noise: the table's sigma\n";
+      out << "noise: the table's sigma";
     } else {
       std::snprintf(
-          line, sizeof(line), "noise: %s, level %.3g%s\n",
-          r.noise_model.c_str(), r.noise_level,
+          line, sizeof(line), "noise: %s, level %.3g%s", r.noise_model.c_str(),
+          r.noise_level,
           r.noise_level_estimated ? " (estimated from the residuals)" : "");
       out << line;
     }
+    std::snprintf(line, sizeof(line), "; minimised: the %s, rms %.4g\n",
+                  r.minimised.c_str(), r.minimised_rms);
+    out << line;
   }
   if (r.alternations > 0) {
     std::snprintf(line, sizeof(line),
@@ -178,6 +183,15 @@ std::string FitReportText(const FitReport& r,
                   "table %.3g\n",
                   r.alternations, r.lut_change);
     out << line;
+    if (r.lut_views_fitted < r.lut_views) {
+      std::snprintf(line, sizeof(line),
+                    "lookup table: %d of %d views have enough samples for an "
+                    "entry of their own; the others take T interpolated from "
+                    "them%s\n",
+                    r.lut_views_fitted, r.lut_views,
+                    r.lut_views_fitted == 0 ? " (none: T = 1)" : "");
+      out << line;
+    }
   }
   if (r.rows_not_used > 0) {
     std::snprintf(line, sizeof(line),

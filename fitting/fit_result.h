@@ -92,6 +92,11 @@ struct FitReport {
   // reflection-only model's transmission rows); 0 for most fits.
   int rows_not_used = 0;
   int starts = 1;  // multi-start: how many solves were run
+  // A lookup-table fit: the views with an entry of their own, of all.
+  int lut_views_fitted = 0, lut_views = 0;
+  // Free entries on a bound that only limits the search (also where the
+  // parameters are not listed: a texel of a map).
+  int at_search_limit = 0;
   std::vector<ParameterReport> parameters;
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".

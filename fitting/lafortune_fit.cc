@@ -222,6 +222,27 @@ bool Finite(const LafortuneParams& p) {
 
 }  // namespace
 
+std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p) {
+  std::vector<LafortuneLimit> out;
+  for (size_t k = 0; k < p.lobes.size(); ++k) {
+    for (int q = 0; q < 4; ++q) {
+      const ParamInfo& info = *kLafortuneLobeEntries[q];
+      if (info.physical) continue;
+      const glm::dvec3& field = p.lobes[k].*kLafortuneLobeFields<double>[q];
+      const double span = info.fit_hi - info.fit_lo;
+      for (int c = 0; c < 3; ++c) {
+        if (field[c] - info.fit_lo < 1e-9 * span ||
+            info.fit_hi - field[c] < 1e-9 * span) {
+          out.push_back({"lobes[" + std::to_string(k) + "]." + info.name +
+                             ChannelSuffix(c),
+                         field[c]});
+        }
+      }
+    }
+  }
+  return out;
+}
+
 LafortuneFitResult FitLafortune(const TexelSamples& samples,
                                 const LafortuneFitOptions& options) {
   LafortuneFitResult out;
@@ -258,6 +279,18 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         samples.value[i] / std::max(samples.l[i].z, 1e-3) - rho_d;
     peak = glm::max(peak, excess);
   }
+  // The views with enough samples for an entry of their own; the others
+  // follow them by the table's interpolation.
+  std::vector<int> view_samples(n_views, 0);
+  for (size_t i = 0; i < samples.size(); ++i) ++view_samples[samples.view[i]];
+  std::vector<bool> own(n_views, false);
+  ViewTable owned;
+  for (size_t k = 0; k < n_views; ++k) {
+    own[k] = view_samples[k] >= std::max(1, options.min_lut_samples);
+    if (own[k]) owned.views.push_back(samples.views[k]);
+  }
+  // Without a view to fit the table is T = 1: the fit without one.
+  const bool lut = options.lookup_table && !owned.views.empty();
   // A warm start (the best of a group's children), else the paper's.
   const LafortuneModel* warm = nullptr;
   double warm_cost = HUGE_VAL;
@@ -266,14 +299,13 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         m->lut.color.size() != n_views) {
       continue;
     }
-    const double cost =
-        Cost(samples, options.lookup_table ? m->lut.color : t, m->params);
+    const double cost = Cost(samples, lut ? m->lut.color : t, m->params);
     if (cost < warm_cost) {
       warm_cost = cost;
       warm = m;
     }
   }
-  if (warm != nullptr && options.lookup_table) t = warm->lut.color;
+  if (warm != nullptr && lut) t = warm->lut.color;
   // A given start (--init) with this lobe count, and its lookup table when
   // it was fitted on the same views.
   const LafortuneModel* given =
@@ -281,8 +313,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
               static_cast<int>(options.start->params.lobes.size()) == lobes
           ? options.start
           : nullptr;
-  if (given != nullptr && options.lookup_table &&
-      given->lut.views.size() == n_views &&
+  if (given != nullptr && lut && given->lut.views.size() == n_views &&
       given->lut.color.size() == n_views) {
     bool same_views = true;
     for (size_t k = 0; k < n_views && same_views; ++k) {
@@ -325,7 +356,22 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   // Alternation: T in closed form per view and channel (eq. 4), then the
   // lobes again, until the mean relative change of T is small.
   bool lut_converged = false;
-  if (options.lookup_table) {
+  out.report.lut_views = static_cast<int>(n_views);
+  out.report.lut_views_fitted = lut ? static_cast<int>(owned.views.size()) : 0;
+  auto follow = [&]() {
+    owned.color.clear();
+    owned.alpha.clear();
+    for (size_t k = 0; k < n_views; ++k) {
+      if (own[k]) {
+        owned.color.push_back(t[k]);
+        owned.alpha.push_back(1.0);
+      }
+    }
+    for (size_t k = 0; k < n_views; ++k) {
+      if (!own[k]) t[k] = LookupView(owned, samples.views[k]).color;
+    }
+  };
+  if (lut) {
     for (int pass = 1; pass < options.max_alternations; ++pass) {
       std::vector<glm::dvec3> fr(n_views, glm::dvec3(0.0)),
           ff(n_views, glm::dvec3(0.0));
@@ -342,6 +388,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       double change = 0.0;
       int counted = 0;
       for (size_t k = 0; k < n_views; ++k) {
+        if (!own[k]) continue;
         for (int c = 0; c < 3; ++c) {
           if (!(ff[k][c] > 1e-12 * ff_max[c])) continue;  // no signal
           const double updated = std::clamp(fr[k][c] / ff[k][c], 0.0, kMaxT);
@@ -352,6 +399,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         }
       }
       out.report.lut_change = counted ? change / counted : 0.0;
+      follow();
       // Later passes start next to their solution: a few iterations do.
       LafortuneFitOptions later = options;
       later.max_iterations =
@@ -369,6 +417,10 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   if (!options.lookup_table) {
     out.report.converged = true;
     out.report.termination = "no lookup table: one lobe fit";
+  } else if (!lut) {
+    out.report.converged = true;
+    out.report.termination =
+        "no view has enough samples for a lookup-table entry: one lobe fit";
   } else if (lut_converged) {
     out.report.converged = true;
     out.report.termination = "lookup table converged";
@@ -403,8 +455,28 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   out.report.rms = std::sqrt(se / (3.0 * samples.size()));
   out.report.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
   out.report.usable = std::isfinite(out.report.rms);
-  if (!out.report.usable)
+  if (!out.report.usable) {
     out.report.message = NonFiniteSample(samples, t, best);
+    return out;
+  }
+  // A lobe entry on a search limit: the solver wanted to leave the range
+  // where a lobe means something (the rule of the other fits,
+  // fitting/least_squares.cc).
+  const std::vector<LafortuneLimit> limits = LafortuneAtSearchLimit(best);
+  out.report.at_search_limit = static_cast<int>(limits.size());
+  if (!limits.empty()) {
+    out.report.converged = false;
+    std::ostringstream msg;
+    msg << limits.front().name << " stopped at its search limit "
+        << limits.front().value;
+    if (limits.size() > 1) {
+      msg << " (and " << limits.size() - 1 << " more lobe entries)";
+    }
+    msg << ": a lobe collapsed to a constant (N = 0.5) or is narrower than "
+           "the data resolve (N = 200, |C| = 3); try fewer lobes (--lobes, "
+           "--tolerance)";
+    out.report.message = msg.str();
+  }
   return out;
 }
 

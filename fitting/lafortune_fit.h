@@ -22,7 +22,14 @@ struct LafortuneFitOptions {
   bool lookup_table = true;    // false: T = 1 (no alternation)
   double lut_threshold = 0.1;  // mean relative change of T that stops
   int max_alternations = 10;   // cap on lobe/T alternations
-  int max_iterations = 50;     // Levenberg-Marquardt iterations per pass
+  // A view gets its own lookup-table entry only with at least this many
+  // samples (distinct lights); the others take T interpolated from those
+  // entries (LookupView; 1 when no view has enough). A free T fits a view's
+  // few samples exactly and learns nothing for the rest: on CUReT tables
+  // (205 rows, 147 views, 112 with one row) the table gained nothing on
+  // held-out rows and lost in bench --quick (0.656 against 0.546 without).
+  int min_lut_samples = 8;
+  int max_iterations = 50;  // Levenberg-Marquardt iterations per pass
   // Ceres' function_tolerance: a solve stops when an iteration lowers the
   // cost by less than this fraction. Measured on gonio texels (8 x 8 plain
   // weave, 64 x 64 directions, K = 2; docs/lafortune.md): 1e-6 (Ceres'
@@ -63,12 +70,25 @@ struct LafortuneFitOptions {
 // The fitted model (lobes, lookup table, normal) and its report: usable,
 // converged (the alternation stopped because T changed less than
 // lut_threshold, or there is no lookup table; not at the
-// max_alternations cap), termination (in words), iterations (all passes),
-// alternations, lut_change (last pass), final_cost (1/2 sum of weighted
-// squared residuals as rho, as Ceres'), rms and relative_rms (of the
-// samples as rho), residuals and rows. No standard deviations: the scale
-// between T and the lobes is not identifiable (docs/decisions.md).
+// max_alternations cap; no lobe entry at a search limit, whose count is
+// at_search_limit and the first of which the message names), termination (in
+// words), iterations (all passes), alternations, lut_change (last pass),
+// final_cost (1/2 sum of weighted squared residuals as rho, as Ceres'), rms and
+// relative_rms (of the samples as rho), residuals and rows. No standard
+// deviations: the scale between T and the lobes is not identifiable
+// (docs/decisions.md).
 using LafortuneFitResult = FitResult<LafortuneModel>;
+
+// The lobe entries of `p` that lie on a bound that only limits the search
+// (|C| = 3, N = 0.5 or 200; models/lafortune.h), as report names
+// ("lobes[1].N_r") with their values: a lobe the solver pushed to the edge
+// of its range - a collapsed lobe (N = 0.5, a constant in disguise) or one
+// narrower than the data resolve (N = 200) - which is not a converged fit.
+struct LafortuneLimit {
+  std::string name;
+  double value;
+};
+std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p);
 
 // Never throws for data problems: an empty texel, all-zero values or views
 // without signal give a usable zero/diffuse model or usable = false with a

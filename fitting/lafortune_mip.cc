@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <thread>
 #include <unordered_map>
 
@@ -70,6 +71,11 @@ std::vector<ParameterReport> LafortuneParameterReports(
       r.free = true;
       r.lower = info.fit_lo;
       r.upper = info.fit_hi;
+      // On a bound as least_squares.cc reports it.
+      const double span = r.upper - r.lower;
+      r.at_bound =
+          r.value - r.lower < 1e-9 * span || r.upper - r.value < 1e-9 * span;
+      r.at_search_limit = r.at_bound && !info.physical;
       out.push_back(r);
     }
   };
@@ -93,9 +99,18 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   const ViewIndex views(table);
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
-  LafortuneFitResult fit = FitTexelRows(
-      table, LafortuneWeighting(table, options.noise), views, rows, options);
+  const Weighting weighting = LafortuneWeighting(table, options.noise);
+  LafortuneFitResult fit = FitTexelRows(table, weighting, views, rows, options);
   fit.report.parameters = LafortuneParameterReports(fit.params.params);
+  // The cost is that of the table's values (sigma scales with the value's
+  // conversion to rho, lafortune_samples.h), over the samples merged per
+  // light and view; rms and relative_rms are of the rows as rho. No
+  // parameter is counted free for the level estimate (the scale between T
+  // and the lobes is not identifiable).
+  ReportWeighting(weighting, &fit.report);
+  fit.report.minimised +=
+      std::string(" of the table's values (") + QuantityName(table.quantity) +
+      "), over merged samples";
   return fit;
 }
 
@@ -115,7 +130,13 @@ LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
       if (!t.report.usable && out.unusable++ == 0) {
         out.first_unusable = where + t.report.message;
       }
-      if (t.report.usable && !t.report.converged && out.not_converged++ == 0) {
+      if (t.report.usable && t.report.at_search_limit > 0) {
+        ++s.at_search_limit;
+        if (out.at_search_limit++ == 0) {
+          out.first_at_search_limit = where + t.report.message;
+        }
+      } else if (t.report.usable && !t.report.converged &&
+                 out.not_converged++ == 0) {
         out.first_not_converged = where + t.report.termination;
       }
       out.worst_relative_rms =
@@ -280,7 +301,28 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
     }
     levels.push_back(std::move(map));
   }
-  return ToParamMipmap(levels, result.views);
+  ParamMipmap mipmap = ToParamMipmap(levels, result.views);
+  // What the fits came to, per level, in the index's metadata.
+  const LafortuneMipSummary summary = SummarizeLafortuneMip(result);
+  nlohmann::ordered_json meta =
+      nlohmann::ordered_json::parse(mipmap.metadata_json);
+  nlohmann::ordered_json fit;
+  nlohmann::ordered_json per_level = nlohmann::ordered_json::array();
+  for (const LafortuneLevelSummary& l : summary.levels) {
+    nlohmann::ordered_json level;
+    level["width"] = l.width;
+    level["height"] = l.height;
+    level["mean_relative_rms"] = l.mean_relative_rms;
+    level["at_search_limit"] = l.at_search_limit;
+    per_level.push_back(level);
+  }
+  fit["levels"] = per_level;
+  fit["unusable"] = summary.unusable;
+  fit["at_search_limit"] = summary.at_search_limit;
+  fit["alternation_cap"] = summary.not_converged;
+  meta["fit"] = fit;
+  mipmap.metadata_json = meta.dump();
+  return mipmap;
 }
 
 }  // namespace clothfit

@@ -80,20 +80,22 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
                                    const LafortuneMipOptions& options);
 
 // What a texel map's fits came to, per level and over all: the texels
-// that reached no usable solution or stopped at the alternation cap, each
-// with where the first one is and why.
+// that reached no usable solution, have a lobe entry at a search limit
+// (LafortuneAtSearchLimit) or stopped at the alternation cap, each with
+// where the first one is and why.
 struct LafortuneLevelSummary {
   int width = 0, height = 0;
   size_t samples = 0;
   double mean_relative_rms = 0.0, mean_view_relative_rms = 0.0;
   int lobe_counts[4] = {0, 0, 0, 0};  // texels with 0..3 lobes
   double mean_alternations = 0.0, mean_iterations = 0.0;
+  int at_search_limit = 0;  // texels with a lobe entry at a search limit
 };
 struct LafortuneMipSummary {
   std::vector<LafortuneLevelSummary> levels;
-  int unusable = 0, not_converged = 0;
+  int unusable = 0, not_converged = 0, at_search_limit = 0;
   // "level L, texel (x, y): why" of the first of each.
-  std::string first_unusable, first_not_converged;
+  std::string first_unusable, first_not_converged, first_at_search_limit;
   double worst_relative_rms = 0.0;
 };
 LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result);

@@ -50,19 +50,8 @@ std::vector<ParameterSpec> ParameterSpecs(const P& p,
   return specs;
 }
 
-// A factor on the whole model for data on an arbitrary scale (--fit-scale).
-inline constexpr ParamInfo kFitScale = {
-    "scale",
-    "unitless",
-    "factor on the model for data on an arbitrary scale (the parameter "
-    "file holds the model)",
-    {0.0, kInfinity, true, false},
-    1e-6,
-    1e6,
-    false,
-    {1.0},
-    "clothfit",
-    1};
+// The factor on the whole model (models/params.h kModelScale).
+inline constexpr const ParamInfo& kFitScale = kModelScale;
 
 // A problem over the blocks of `x`: block b holds x[offset_b, offset_b +
 // size_b). `add_residuals` adds the residual blocks to `problem`, given the

@@ -93,6 +93,7 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
   ReportWeighting(weighting, &result.report);
   FromArray(x.data(), &result.params);
+  result.params.scale = x[kThreadFlatSize];  // 1 unless fitted
   result.report.rows = static_cast<int>(table.rows.size());
   if (table.channels == 1) {  // one channel: one albedo
     result.params.albedo =

@@ -252,8 +252,9 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
   ParamFile out;
   const std::string model = r.String("model");
   if (model == "thread") {
-    const ThreadParams p = ReadParamKeys<ThreadParams>(r);
-    const std::string e = ValidateParams(p);
+    ThreadParams p = ReadParamKeys<ThreadParams>(r);
+    if (r.Has(kModelScale.name)) p.scale = r.Number(kModelScale.name);
+    const std::string e = ValidateModel(p);
     if (!e.empty()) FailValidation(name, e);
     out.params = p;
   } else if (model == "cloth") {
@@ -264,6 +265,7 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
       c.threads.push_back(ReadClothThread(
           threads[j], name, "threads[" + std::to_string(j) + "]"));
     }
+    if (r.Has(kModelScale.name)) c.scale = r.Number(kModelScale.name);
     const std::string e = ValidateClothParams(c);
     if (!e.empty()) FailValidation(name, e);
     out.params = c;
@@ -369,6 +371,7 @@ std::string FormatParamFile(const ParamFile& file) {
   auto rgb = [](const glm::dvec3& v) { return json{v.x, v.y, v.z}; };
   if (const auto* p = std::get_if<ThreadParams>(&file.params)) {
     WriteParamKeys(*p, &j);
+    if (p->scale != 1.0) j[kModelScale.name] = p->scale;
   } else if (const auto* m = std::get_if<LafortuneModel>(&file.params)) {
     j[kLafortuneDiffuse.name] = rgb(m->params.diffuse);
     json lobes = json::array();
@@ -416,6 +419,7 @@ std::string FormatParamFile(const ParamFile& file) {
       threads.push_back(t);
     }
     j["threads"] = threads;
+    if (c.scale != 1.0) j[kModelScale.name] = c.scale;
   }
   if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);
   std::string out;

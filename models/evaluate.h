@@ -111,7 +111,8 @@ inline glm::dvec3 Evaluate(const ModelParams& params, const glm::dvec3& wi,
 // model's own rules: "" when valid, else a message naming the entry.
 inline std::string ValidateModel(const ModelParams& params) {
   if (const auto* p = std::get_if<ThreadParams>(&params)) {
-    return ValidateParams(*p);
+    const std::string e = ValidateParams(*p);
+    return e.empty() ? CheckParam(kModelScale, p->scale) : e;
   }
   if (const auto* c = std::get_if<ClothParams>(&params)) {
     return ValidateClothParams(*c);

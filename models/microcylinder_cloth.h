@@ -135,6 +135,7 @@ struct ClothThreadT {
 template <typename T>
 struct ClothParamsT {
   std::vector<ClothThreadT<T>> threads;
+  T scale = kModelScale.Default<T>();  // kModelScale
 };
 using ClothThread = ClothThreadT<double>;
 using ClothParams = ClothParamsT<double>;
@@ -171,7 +172,7 @@ inline std::string ValidateClothParams(const ClothParams& c) {
     msg << "threads: coverages sum to " << sum << ", must be <= 1";
     return msg.str();
   }
-  return "";
+  return CheckParam(kModelScale, c.scale);
 }
 
 // Shadowing/masking M (eq. 8) or reweighting P (eq. 10) from the cosines of
@@ -318,11 +319,12 @@ template <typename T>
 inline constexpr ModelInfo kModelInfo<ClothParamsT<T>> = {
     "cloth", Quantity::kCosineWeighted, false};
 
-// A cloth patch in the surface frame: rho (eq. 13).
+// A cloth patch in the surface frame: rho (eq. 13) times the model's
+// scale.
 template <typename T, typename G>
 Vec3<T> NativeValue(const ClothParamsT<T>& c, const Vec3<G>& wi,
                     const Vec3<G>& wo) {
-  return ClothRho(c, Cast<T>(wi), Cast<T>(wo));
+  return ClothRho(c, Cast<T>(wi), Cast<T>(wo)) * c.scale;
 }
 
 }  // namespace clothfit

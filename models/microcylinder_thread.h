@@ -92,6 +92,9 @@ struct ThreadParamsT {
   T gamma_s_deg = kThreadGammaS.Default<T>();
   T gamma_v_deg = kThreadGammaV.Default<T>();
   Vec3<T> albedo = kThreadAlbedo.DefaultRgb<T>();
+  // kModelScale: a factor on the thread alone (a cloth's threads keep 1;
+  // the cloth has its own).
+  T scale = kModelScale.Default<T>();
 };
 using ThreadParams = ThreadParamsT<double>;
 
@@ -274,11 +277,12 @@ template <typename T>
 inline constexpr ModelInfo kModelInfo<ThreadParamsT<T>> = {
     "thread", Quantity::kBrdf, false};
 
-// A thread alone, in the thread frame: its BSDF f (eq. 2).
+// A thread alone, in the thread frame: its BSDF f (eq. 2) times the
+// model's scale.
 template <typename T, typename G>
 Vec3<T> NativeValue(const ThreadParamsT<T>& p, const Vec3<G>& wi,
                     const Vec3<G>& wo) {
-  return ThreadBsdfLocal(p, Cast<T>(wi), Cast<T>(wo));
+  return ThreadBsdfLocal(p, Cast<T>(wi), Cast<T>(wo)) * p.scale;
 }
 
 }  // namespace clothfit

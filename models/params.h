@@ -193,6 +193,24 @@ std::vector<std::string> FlatNames(const P& p) {
   return names;
 }
 
+// A factor on a whole reflectance model (thread, cloth): 1 for absolute
+// reflectance; a fit of data on an arbitrary scale (--fit-scale) finds it,
+// and the parameter file keeps it ("scale"), so that every evaluation
+// reproduces the data the fit saw. Not part of the flat vectors (a fit
+// gives it a block of its own).
+inline constexpr ParamInfo kModelScale = {
+    "scale",
+    "unitless",
+    "factor on the whole model: 1 for absolute reflectance; the factor "
+    "a fit with --fit-scale found for data on an arbitrary scale",
+    {0.0, kInfinity, true, false},
+    1e-6,
+    1e6,
+    false,
+    {1.0},
+    "clothfit",
+    1};
+
 // "[lo, hi]", "(0, 90]", ">= 0", "> 0": an interval as a message shows it.
 inline std::string DescribeInterval(const Interval& i) {
   std::ostringstream out;

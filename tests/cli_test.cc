@@ -46,6 +46,7 @@ using testing_util::ReadText;
 using testing_util::RunClothfit;
 using testing_util::RunResult;
 using testing_util::WriteText;
+using testing_util::WroteTextureMap;
 
 fs::path TestDir() { return testing_util::FreshTestDir("cli_test_"); }
 
@@ -629,6 +630,49 @@ TEST(CliTest, FitBadUsage) {
                  {"--noise-floor"});
 }
 
+// Data on an arbitrary scale: --fit-scale finds the factor, the parameter
+// file keeps it, and eval of the file reproduces the data the fit saw
+// (plot, render and the renderer API evaluate the same way).
+TEST(CliTest, FitScaleIsKeptAndEvalReproducesTheScaledData) {
+  const fs::path dir = TestDir();
+  const std::string clean = (dir / "T.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--preset", "linen_plain", "--rows",
+                              "800", "--noise", "0.01", "--out", clean})
+                .status,
+            0);
+  MeasurementTable table = ReadTable(clean).table;
+  for (TableRow& row : table.rows) {
+    row.value *= 0.3;
+    row.sigma *= 0.3;
+  }
+  const std::string scaled = (dir / "scaled.csv").string();
+  WriteTable(table, scaled);
+  const std::string out = (dir / "fit.json").string();
+  const RunResult fit =
+      RunClothfit(dir, {"fit", "--model", "cloth", "--preset", "linen_plain",
+                        "--data", scaled, "--fit-scale", "--out", out});
+  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  const ParamFile file = ReadParamFile(out);
+  const ClothParams& c = std::get<ClothParams>(file.params);
+  EXPECT_NEAR(c.scale, 0.3, 0.3 * 0.02);
+  EXPECT_NE(ReadText(out).find("\"scale\""), std::string::npos);
+
+  const std::string evaluated = (dir / "E.csv").string();
+  const RunResult eval = RunClothfit(
+      dir, {"eval", "--params", out, "--dirs", scaled, "--out", evaluated});
+  ASSERT_EQ(eval.status, 0) << Describe(eval);
+  const MeasurementTable back = ReadTable(evaluated).table;
+  ASSERT_EQ(back.rows.size(), table.rows.size());
+  double se = 0.0, ss = 0.0;
+  for (size_t i = 0; i < back.rows.size(); ++i) {
+    const glm::dvec3 d = back.rows[i].value - table.rows[i].value;
+    se += glm::dot(d, d);
+    ss += glm::dot(table.rows[i].value, table.rows[i].value);
+  }
+  // The data's own noise is 1 %; 0.3's eval was 3.3x off.
+  EXPECT_LT(std::sqrt(se / ss), 0.03);
+}
+
 // A table without a sigma column is fitted with relative noise of an
 // estimated level, and the fit object says so; the level comes out near
 // the table's (1 %); --noise table on such a table is bad input naming
@@ -749,7 +793,7 @@ TEST(CliTest, LafortuneFromVirtualGonioWritesParameterMipmap) {
   const RunResult fit = RunClothfit(
       dir, {"fit", "--model", "lafortune", "--data", table, "--lobes", "1",
             "--mip", "--threads", "2", "--out", exr});
-  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  ASSERT_TRUE(WroteTextureMap(fit)) << Describe(fit);
   EXPECT_NE(fit.out.find("level 1: 1x1"), std::string::npos) << fit.out;
   const ParamMipmap m = ReadParamMipmap(exr);
   ASSERT_EQ(m.levels.size(), 2u);
@@ -943,7 +987,7 @@ TEST(CliTest, LafortuneFromImageStack) {
   const RunResult fit =
       RunClothfit(dir, {"fit", "--model", "lafortune", "--stack", manifest,
                         "--lobes", "1", "--out", exr});
-  ASSERT_EQ(fit.status, 0) << Describe(fit);
+  ASSERT_TRUE(WroteTextureMap(fit)) << Describe(fit);
   const ParamMipmap m = ReadParamMipmap(exr);
   ASSERT_EQ(m.levels.size(), 1u);  // no --mip: level 0 only
   EXPECT_EQ(m.levels[0].width, 2);
@@ -958,10 +1002,9 @@ TEST(CliTest, LafortuneFromImageStack) {
                 .status,
             0);
   const std::string from_table = (dir / "t.exr").string();
-  ASSERT_EQ(RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
-                              "--lobes", "1", "--out", from_table})
-                .status,
-            0);
+  ASSERT_TRUE(WroteTextureMap(
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+                        "--lobes", "1", "--out", from_table})));
   const ParamMipmap t = ReadParamMipmap(from_table);
   ASSERT_EQ(t.channels, m.channels);
   double tilt = 0.0;
@@ -1044,9 +1087,34 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
                  {"fit", "--model", "lafortune", "--data", table, "--init",
                   (dir / "slab.json").string(), "--out", again},
                  {"slab.json", "lafortune"});
-  // A lookup table never fitted (one alternation): not converged, exit 1.
+  // Random directions give one row per view: no view has enough samples
+  // for a lookup-table entry, which the summary says.
+  const RunResult sparse = RunClothfit(
+      dir, {"fit", "--model", "lafortune", "--data", table, "--out", again});
+  EXPECT_EQ(sparse.status, 0) << Describe(sparse);
+  EXPECT_NE(sparse.err.find("0 of 800 views have at least 8 samples"),
+            std::string::npos)
+      << sparse.err;
+  // A gonio-style table (every light at each of 6 views): a lookup table
+  // never fitted (one alternation) is not converged, exit 1.
+  std::string grid =
+      "# quantity: cosine_weighted\ntheta_i,phi_i,theta_o,phi_o\n";
+  for (int v = 0; v < 6; ++v) {
+    for (int l = 0; l < 12; ++l) {
+      grid += std::to_string(10 * (l % 6) + 5) + "," +
+              std::to_string(60 * (l / 6) + 15) + "," +
+              std::to_string(12 * v + 5) + "," + std::to_string(45 * v) + "\n";
+    }
+  }
+  WriteText(dir / "grid_dirs.csv", grid);
+  const std::string grid_table = (dir / "grid.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"eval", "--params", out, "--dirs",
+                              (dir / "grid_dirs.csv").string(), "--quantity",
+                              "cosine_weighted", "--out", grid_table})
+                .status,
+            0);
   const RunResult capped =
-      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table,
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", grid_table,
                         "--alternations", "1", "--out", again});
   EXPECT_EQ(capped.status, 1) << Describe(capped);
   EXPECT_NE(capped.err.find("without converging"), std::string::npos)

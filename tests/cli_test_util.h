@@ -69,6 +69,15 @@ inline RunResult RunClothfit(const std::filesystem::path& dir,
   return result;
 }
 
+// A texture-map fit that wrote its map: exit 0, or exit 1 because some
+// texel has a lobe entry at a search limit (named, the map still written).
+inline bool WroteTextureMap(const RunResult& r) {
+  return r.status == 0 ||
+         (r.status == 1 &&
+          r.err.find("at a search limit") != std::string::npos &&
+          r.err.find("no usable solution") == std::string::npos);
+}
+
 inline std::string Describe(const RunResult& r) {
   return "exit " + std::to_string(r.status) + "\nstdout:\n" + r.out +
          "\nstderr:\n" + r.err;

@@ -97,6 +97,35 @@ TEST(Material, EveryParameterFileEvaluatesAsTheModel) {
   }
 }
 
+// A parameter file's scale (what --fit-scale found) reaches the renderer.
+TEST(Material, ScaleOfThreadAndClothFilesMultipliesTheModel) {
+  ClothParams cloth;
+  ASSERT_TRUE(GetPreset("linen_plain", &cloth));
+  ClothParams scaled_cloth = cloth;
+  scaled_cloth.scale = 0.25;
+  ThreadParams thread = cloth.threads[0].params;
+  ThreadParams scaled_thread = thread;
+  scaled_thread.scale = 0.25;
+  const auto dir = FreshTestDir("material_scale_");
+  const std::vector<std::pair<ModelParams, ModelParams>> cases = {
+      {cloth, scaled_cloth}, {thread, scaled_thread}};
+  for (size_t k = 0; k < cases.size(); ++k) {
+    const std::string path =
+        (dir / ("scaled" + std::to_string(k) + ".json")).string();
+    WriteParamFile(ParamFile{cases[k].second, ""}, path);
+    const Material m = Material::Load(path);
+    const glm::dvec3 wi = glm::normalize(glm::dvec3(0.3, 0.1, 0.9));
+    const glm::dvec3 wo = glm::normalize(glm::dvec3(-0.4, 0.2, 0.8));
+    const glm::dvec3 want =
+        0.25 * Evaluate(cases[k].first, wi, wo, Quantity::kBrdf);
+    const glm::dvec3 got = m.F(wi, wo);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(got[c], want[c], 1e-12 * (1.0 + want[c])) << k;
+    }
+    EXPECT_GT(want.x, 0.0);
+  }
+}
+
 TEST(Material, SlabTransmitsThroughTheOtherSide) {
   SlabParams slab;
   slab.tau = glm::dvec3(0.4);

@@ -263,6 +263,32 @@ TEST(ParamsJsonTest, GoodFilesAreAccepted) {
   EXPECT_EQ(ParseError(GoodClothFile()), "");
 }
 
+// The model's scale (models/params.h kModelScale): optional, 1 when
+// absent and then not written, kept exactly, validated; a cloth has one,
+// its threads none.
+TEST(ParamsJsonTest, ScaleOfThreadAndClothIsOptionalKeptAndValidated) {
+  const ParamFile plain = ParseParamFile(ThreadFile(), kFileName);
+  EXPECT_EQ(std::get<ThreadParams>(plain.params).scale, 1.0);
+  EXPECT_EQ(FormatParamFile(plain).find("scale"), std::string::npos);
+  const ParamFile thread =
+      ParseParamFile(ThreadFile(ThreadKeys(), ", \"scale\": 0.3"), kFileName);
+  EXPECT_EQ(std::get<ThreadParams>(thread.params).scale, 0.3);
+  EXPECT_EQ(FormatParamFile(ParseParamFile(FormatParamFile(thread), kFileName)),
+            FormatParamFile(thread));
+  const ParamFile cloth = ParseParamFile(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "0.33"),
+                ", \"scale\": 2.5"),
+      kFileName);
+  EXPECT_EQ(std::get<ClothParams>(cloth.params).scale, 2.5);
+  EXPECT_NE(FormatParamFile(cloth).find("\"scale\": 2.5"), std::string::npos);
+  ExpectError(ThreadFile(ThreadKeys(), ", \"scale\": 0"), {"scale", "> 0"});
+  ExpectError(ThreadFile(ThreadKeys(), ", \"scale\": -1"), {"scale"});
+  ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
+                        ClothThreadJson("v", "0.33", "\"offsets_deg\": [0]",
+                                        ", \"scale\": 0.5")),
+              {"threads[1].scale", "unknown key"});
+}
+
 TEST(ParamsJsonTest, UnknownTopLevelKeyIsNamed) {
   ExpectError(ThreadFile(ThreadKeys(), ", \"sheen\": 1"),
               {"sheen", "unknown key"});
