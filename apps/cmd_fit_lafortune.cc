@@ -64,10 +64,18 @@ int RunFitLafortune(int argc, char** argv) {
   args.Flag("data-start",
             "also try a start scaled to the data and keep the better "
             "(slower; docs/lafortune.md)");
+  args.Option("solve", "S",
+              "alternate (the paper's alternation of lobes and table) or "
+              "joint (both in one solve: the optimum, but unbounded lobes "
+              "where the samples leave them free; docs/lafortune.md)",
+              "alternate");
   args.Option("lut-threshold", "X",
               "stop alternating when T changes less than this (mean relative)",
               "0.1");
-  args.Option("alternations", "N", "cap on lobe/T alternations", "10");
+  args.Option("alternations", "N",
+              "cap on lobe/T alternations (1: T as started, also for "
+              "--solve joint)",
+              "10");
   // The defaults of a texel fit: a few iterations per pass, the normal
   // equations (fitting/lafortune_fit.h), every core for the texels.
   const LafortuneMipOptions defaults;
@@ -112,6 +120,15 @@ int RunFitLafortune(int argc, char** argv) {
   if (init) options.fit.start = &*init;
   options.fit.lookup_table = !args.Has("no-lut");
   options.fit.data_driven_start = args.Has("data-start");
+  const std::string solve = args.Get("solve");
+  if (solve == "joint") {
+    options.fit.solve = LafortuneSolve::kJoint;
+  } else if (solve == "alternate") {
+    options.fit.solve = LafortuneSolve::kAlternate;
+  } else {
+    args.Fail("option '--solve': expected joint or alternate, got '" + solve +
+              "'");
+  }
   options.fit.lut_threshold = args.GetDouble("lut-threshold");
   if (!(options.fit.lut_threshold >= 0.0)) {
     args.Fail("option '--lut-threshold': must be >= 0");

@@ -12,6 +12,7 @@
 #include <unordered_map>
 
 #include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/lafortune_joint_internal.h"
 #include "fitting/residual_weight.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
@@ -25,9 +26,7 @@ namespace {
 // precomputed - the products l_x v_x, l_y v_y, l_z v_z and the factor
 // T(v) max(l_z, 0) - so that the solver's many evaluations do only the
 // lobes (LobeSum, models/lafortune.h).
-struct ChannelTerms {
-  double xx, yy, zz, factor, measured, scale;
-};
+using ChannelTerms = LafortuneSampleTerms;
 
 template <int kLobes>
 struct ChannelResidual {
@@ -192,26 +191,6 @@ double Cost(const TexelSamples& s, const std::vector<glm::dvec3>& t,
   return std::isfinite(cost) ? cost : HUGE_VAL;
 }
 
-// Names the first sample whose model value is not finite: the table line of its
-// first row and its directions in the texel's frame.
-std::string NonFiniteSample(const TexelSamples& s,
-                            const std::vector<glm::dvec3>& t,
-                            const LafortuneParams& p) {
-  for (size_t i = 0; i < s.size(); ++i) {
-    const glm::dvec3 m = t[s.view[i]] * LafortuneF1(p, s.l[i], s.v[i]);
-    if (std::isfinite(glm::dot(m - s.value[i], glm::dvec3(1.0)))) continue;
-    std::ostringstream out;
-    out.precision(6);
-    out << "the model value is (" << m.x << ", " << m.y << ", " << m.z
-        << ") at line " << s.source_line[i] << " of the table, light ("
-        << s.l[i].x << ", " << s.l[i].y << ", " << s.l[i].z << ") and view ("
-        << s.v[i].x << ", " << s.v[i].y << ", " << s.v[i].z
-        << ") in the texel's frame";
-    return out.str();
-  }
-  return "non-finite model values";
-}
-
 bool Finite(const LafortuneParams& p) {
   bool ok = std::isfinite(glm::dot(p.diffuse, glm::dvec3(1.0)));
   for (const LafortuneLobe& l : p.lobes) {
@@ -221,27 +200,6 @@ bool Finite(const LafortuneParams& p) {
 }
 
 }  // namespace
-
-std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p) {
-  std::vector<LafortuneLimit> out;
-  for (size_t k = 0; k < p.lobes.size(); ++k) {
-    for (int q = 0; q < 4; ++q) {
-      const ParamInfo& info = *kLafortuneLobeEntries[q];
-      if (info.physical) continue;
-      const glm::dvec3& field = p.lobes[k].*kLafortuneLobeFields<double>[q];
-      const double span = info.fit_hi - info.fit_lo;
-      for (int c = 0; c < 3; ++c) {
-        if (field[c] - info.fit_lo < 1e-9 * span ||
-            info.fit_hi - field[c] < 1e-9 * span) {
-          out.push_back({"lobes[" + std::to_string(k) + "]." + info.name +
-                             ChannelSuffix(c),
-                         field[c]});
-        }
-      }
-    }
-  }
-  return out;
-}
 
 LafortuneFitResult FitLafortune(const TexelSamples& samples,
                                 const LafortuneFitOptions& options) {
@@ -284,13 +242,26 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   std::vector<int> view_samples(n_views, 0);
   for (size_t i = 0; i < samples.size(); ++i) ++view_samples[samples.view[i]];
   std::vector<bool> own(n_views, false);
-  ViewTable owned;
+  int owned = 0;
   for (size_t k = 0; k < n_views; ++k) {
     own[k] = view_samples[k] >= std::max(1, options.min_lut_samples);
-    if (own[k]) owned.views.push_back(samples.views[k]);
+    owned += own[k] ? 1 : 0;
   }
-  // Without a view to fit the table is T = 1: the fit without one.
-  const bool lut = options.lookup_table && !owned.views.empty();
+  // Without a view to fit, or without signal, the table is T = 1: the fit
+  // without one.
+  bool signal = false;
+  for (const glm::dvec3& y : samples.value) {
+    signal = signal || y.x != 0.0 || y.y != 0.0 || y.z != 0.0;
+  }
+  const bool lut = options.lookup_table && owned > 0 && signal;
+  if (!signal) {  // all values 0: exactly the zero model (C = 0, T = 1)
+    out.params.params = PaperStart(lobes, 0.0, 0.0);
+    out.params.lut.color = t;
+    out.report.usable = out.report.converged = true;
+    out.report.termination = "all values are 0: the zero model";
+    out.report.lut_views = static_cast<int>(n_views);
+    return out;
+  }
   // A warm start (the best of a group's children), else the paper's.
   const LafortuneModel* warm = nullptr;
   double warm_cost = HUGE_VAL;
@@ -337,15 +308,33 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   // iterations) runs on a subsample; the later passes refine on all samples.
   const TexelSamples sub = Subsample(samples, options.first_pass_subsample);
   const TexelSamples& first = sub.size() > 0 ? sub : samples;
+  // The joint solve (variable projection, fitting/lafortune_joint.cc) is
+  // its own first pass: lobes and table from each start on the subsample.
+  const bool joint = lut && options.solve == LafortuneSolve::kJoint &&
+                     options.max_alternations > 1;
+  bool first_converged = true;
+  std::vector<glm::dvec3> best_t = t;
   for (LafortuneParams p : starts) {
-    out.report.iterations +=
-        FitLobes(first, t, options, options.warm_channels, &p);
-    const double cost = Cost(samples, t, p);
+    std::vector<glm::dvec3> start_t = t;
+    bool converged = true;
+    if (joint) {
+      const JointChannelResult r =
+          SolveJoint(first, own, options, kMaxT, &p, &start_t);
+      out.report.iterations += r.iterations;
+      converged = r.converged;
+    } else {
+      out.report.iterations +=
+          FitLobes(first, t, options, options.warm_channels, &p);
+    }
+    const double cost = Cost(samples, start_t, p);
     if (Finite(p) && cost < best_cost) {
       best_cost = cost;
       best = p;
+      best_t = start_t;
+      first_converged = converged;
     }
   }
+  t = best_t;
   if (!(best_cost < HUGE_VAL)) {
     out.params.params = starts.front();
     out.params.lut.color = t;
@@ -357,21 +346,30 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   // lobes again, until the mean relative change of T is small.
   bool lut_converged = false;
   out.report.lut_views = static_cast<int>(n_views);
-  out.report.lut_views_fitted = lut ? static_cast<int>(owned.views.size()) : 0;
-  auto follow = [&]() {
-    owned.color.clear();
-    owned.alpha.clear();
+  out.report.lut_views_fitted = lut ? owned : 0;
+  if (joint) {
+    // From the first pass's solution on all samples (a few iterations).
+    const std::vector<glm::dvec3> before = t;
+    JointChannelResult r = {0, true, true};
+    if (&first != &samples) {
+      r = SolveJoint(samples, own, options, kMaxT, &best, &t);
+      out.report.iterations += r.iterations;
+    }
+    if (r.usable) NormaliseLookupTable(own, kMaxC, &best, &t);
+    double change = 0.0;
+    int counted = 0;
     for (size_t k = 0; k < n_views; ++k) {
-      if (own[k]) {
-        owned.color.push_back(t[k]);
-        owned.alpha.push_back(1.0);
+      for (int c = 0; c < 3 && own[k]; ++c) {
+        change +=
+            std::abs(t[k][c] - before[k][c]) / std::max(before[k][c], 1e-12);
+        ++counted;
       }
     }
-    for (size_t k = 0; k < n_views; ++k) {
-      if (!own[k]) t[k] = LookupView(owned, samples.views[k]).color;
-    }
-  };
-  if (lut) {
+    out.report.lut_change = counted ? change / counted : 0.0;
+    ++out.report.alternations;
+    lut_converged = first_converged && r.converged && r.usable;
+  }
+  if (lut && !joint) {
     for (int pass = 1; pass < options.max_alternations; ++pass) {
       std::vector<glm::dvec3> fr(n_views, glm::dvec3(0.0)),
           ff(n_views, glm::dvec3(0.0));
@@ -399,7 +397,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
         }
       }
       out.report.lut_change = counted ? change / counted : 0.0;
-      follow();
+      FollowOwnedViews(own, samples.views, &t);
       // Later passes start next to their solution: a few iterations do.
       LafortuneFitOptions later = options;
       later.max_iterations =
@@ -421,6 +419,12 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     out.report.converged = true;
     out.report.termination =
         "no view has enough samples for a lookup-table entry: one lobe fit";
+  } else if (joint) {
+    out.report.converged = lut_converged;
+    out.report.termination =
+        lut_converged ? "joint lobe and lookup-table solve converged"
+                      : "joint lobe and lookup-table solve: iteration cap "
+                        "reached (raise --max-iterations)";
   } else if (lut_converged) {
     out.report.converged = true;
     out.report.termination = "lookup table converged";
@@ -456,7 +460,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   out.report.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
   out.report.usable = std::isfinite(out.report.rms);
   if (!out.report.usable) {
-    out.report.message = NonFiniteSample(samples, t, best);
+    out.report.message = LafortuneNonFiniteSample(samples, t, best);
     return out;
   }
   // A lobe entry on a search limit: the solver wanted to leave the range

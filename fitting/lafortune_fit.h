@@ -1,9 +1,13 @@
 // Fits Lafortune lobes with a per-view lookup table (Daubert et al. 2001,
 // Section 5; SPEC §3.3) to the samples of one texel (or one whole table):
-// alternately the lobes by Levenberg-Marquardt with T fixed (first pass
-// T = 1), then every T(v) in closed form per channel (eq. 4:
+// a first pass of the lobes by Levenberg-Marquardt with T = 1 (or a warm
+// start's T), then by default the lobes and T jointly
+// (LafortuneSolve::kJoint), or as the paper alternately the lobes with T
+// fixed and every T(v) in closed form per channel (eq. 4:
 // T = <f, r> / <f, f> over the samples of view v), until the mean relative
-// change of T falls below a threshold or an iteration cap.
+// change of T falls below a threshold or an iteration cap. The joint
+// solve's table is normalised to a mean of 1 over its own views (the
+// lobes take the scale).
 #pragma once
 
 #include <string>
@@ -17,7 +21,25 @@
 
 namespace clothfit {
 
+// How the lobes and the lookup table are solved for: jointly (the lookup
+// table eliminated in each step, fitting/lafortune_joint_internal.h), or
+// alternately as the paper does (Daubert et al. 2001, Section 5: the lobes
+// with T fixed, then T in closed form, until T changes less than
+// lut_threshold).
+enum class LafortuneSolve { kJoint, kAlternate };
+
 struct LafortuneFitOptions {
+  // The paper's alternation by default: the joint solve reaches the
+  // optimum of representable data (relative RMS 2e-14 where the
+  // alternation stops at 0.027), but where the samples leave the lobes
+  // free (few samples per view, directions never measured) it finds lobes
+  // that are huge away from the samples (values 1e23 at unmeasured
+  // directions of a 16 x 16 table, tests/lafortune_test.cc), and the
+  // lobes have no bound on their peak yet (docs/lafortune.md).
+  LafortuneSolve solve = LafortuneSolve::kAlternate;
+  // The joint solve stops when an iteration lowers the cost by less than
+  // this fraction (or after max_iterations).
+  double joint_function_tolerance = 1e-5;
   int lobes = 2;               // K, 0 to 3
   bool lookup_table = true;    // false: T = 1 (no alternation)
   double lut_threshold = 0.1;  // mean relative change of T that stops
@@ -89,6 +111,13 @@ struct LafortuneLimit {
   double value;
 };
 std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p);
+
+// "the model value is (...) at line L of the table, light (...) and view
+// (...) in the texel's frame" for the first sample whose model value with
+// lookup table t is not finite; "non-finite model values" if none.
+std::string LafortuneNonFiniteSample(const TexelSamples& s,
+                                     const std::vector<glm::dvec3>& t,
+                                     const LafortuneParams& p);
 
 // Never throws for data problems: an empty texel, all-zero values or views
 // without signal give a usable zero/diffuse model or usable = false with a

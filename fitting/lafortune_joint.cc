@@ -1,0 +1,264 @@
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/lafortune_joint_internal.h"
+#include "fitting/residual_weight.h"
+#include "models/lafortune.h"
+
+namespace clothfit {
+namespace {
+
+// factor: the foreshortening max(l_z, 0) alone (T is a parameter here).
+using SampleTerms = LafortuneSampleTerms;
+
+// The residuals of one view's samples, T(v) f1(l, v) - y weighted
+// (fitting/residual_weight.h; eq. 3). For a view with an entry of its own
+// T(v) is the closed-form least-squares factor of the current lobes,
+// <f1, y>_w / <f1, f1>_w in [0, max_t] (eq. 4), differentiated through:
+// the residual is that of the lobes with T projected out (variable
+// projection, Golub and Pereyra 1973); for another view it is the fixed
+// t.
+template <int kLobes>
+struct ViewResidual {
+  const std::vector<SampleTerms> terms;
+  const bool own;
+  const double fixed_t, max_t;
+
+  template <typename T>
+  bool operator()(const T* x, T* residual) const {
+    for (size_t i = 0; i < terms.size(); ++i) {
+      const SampleTerms& s = terms[i];
+      residual[i] = LobeSum(x, kLobes, s.xx, s.yy, s.zz) * s.factor;
+    }
+    T t(fixed_t);
+    if (own) {
+      T fy(0.0), ff(0.0);
+      for (size_t i = 0; i < terms.size(); ++i) {
+        const double w = terms[i].scale * terms[i].scale;
+        fy += w * residual[i] * terms[i].measured;
+        ff += w * residual[i] * residual[i];
+      }
+      t = ff > T(0.0) ? fy / ff : T(1.0);
+      if (t < T(0.0)) t = T(0.0);
+      if (t > T(max_t)) t = T(max_t);
+    }
+    for (size_t i = 0; i < terms.size(); ++i) {
+      residual[i] =
+          WeightedResidual(t * residual[i], terms[i].measured, terms[i].scale);
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(std::vector<SampleTerms> terms, bool own,
+                                     double fixed_t, double max_t) {
+    const int n = static_cast<int>(terms.size());
+    return new ceres::AutoDiffCostFunction<ViewResidual, ceres::DYNAMIC,
+                                           1 + 4 * kLobes>(
+        new ViewResidual{std::move(terms), own, fixed_t, max_t}, n);
+  }
+
+  // The factor of `x` (double) for this view: what the residual uses.
+  double Factor(const double* x) const {
+    if (!own) return fixed_t;
+    double fy = 0.0, ff = 0.0;
+    for (size_t i = 0; i < terms.size(); ++i) {
+      const double f =
+          LobeSum(x, kLobes, terms[i].xx, terms[i].yy, terms[i].zz) *
+          terms[i].factor;
+      const double w = terms[i].scale * terms[i].scale;
+      fy += w * f * terms[i].measured;
+      ff += w * f * f;
+    }
+    const double t = ff > 0.0 ? fy / ff : 1.0;
+    return std::clamp(t, 0.0, max_t);
+  }
+};
+
+// The lobe count is a template argument: the solver's inner loop unrolls.
+template <int kLobes>
+void AddViews(const std::vector<std::vector<SampleTerms>>& by_view,
+              const std::vector<bool>& own, const std::vector<double>& lut,
+              double max_t, double* x, ceres::Problem* problem) {
+  for (size_t k = 0; k < by_view.size(); ++k) {
+    if (by_view[k].empty()) continue;
+    problem->AddResidualBlock(
+        ViewResidual<kLobes>::Create(by_view[k], own[k], lut[k], max_t),
+        nullptr, x);
+  }
+}
+
+template <int kLobes>
+void Factors(const std::vector<std::vector<SampleTerms>>& by_view,
+             const std::vector<bool>& own, double max_t, const double* x,
+             std::vector<double>* lut) {
+  for (size_t k = 0; k < by_view.size(); ++k) {
+    if (by_view[k].empty() || !own[k]) continue;
+    const ViewResidual<kLobes> r{by_view[k], true, 1.0, max_t};
+    (*lut)[k] = r.Factor(x);
+  }
+}
+
+}  // namespace
+
+JointChannelResult SolveJointChannel(const TexelSamples& samples,
+                                     const std::vector<bool>& own, int channel,
+                                     int lobes,
+                                     const LafortuneFitOptions& options,
+                                     double max_t, double* x,
+                                     std::vector<double>* lut) {
+  JointChannelResult out;
+  const size_t n_views = lut->size();
+  std::vector<std::vector<SampleTerms>> by_view(n_views);
+  double start_cost = 0.0;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const glm::dvec3& l = samples.l[i];
+    const glm::dvec3& v = samples.v[i];
+    const int view = samples.view[i];
+    const SampleTerms s = {l.x * v.x,
+                           l.y * v.y,
+                           l.z * v.z,
+                           Foreshortening(l),
+                           samples.value[i][channel],
+                           std::sqrt(samples.weight[i][channel])};
+    by_view[view].push_back(s);
+    const double d =
+        (*lut)[view] * LobeSum(x, lobes, s.xx, s.yy, s.zz) * s.factor -
+        s.measured;
+    start_cost += s.scale * s.scale * d * d;
+  }
+  // Ceres refuses (and logs) a start whose cost is not finite.
+  if (!std::isfinite(start_cost)) return out;
+  ceres::Problem problem;
+  problem.AddParameterBlock(x, LafortuneChannelSize(lobes));
+  switch (lobes) {
+    case 0:
+      AddViews<0>(by_view, own, *lut, max_t, x, &problem);
+      break;
+    case 1:
+      AddViews<1>(by_view, own, *lut, max_t, x, &problem);
+      break;
+    case 2:
+      AddViews<2>(by_view, own, *lut, max_t, x, &problem);
+      break;
+    default:
+      AddViews<3>(by_view, own, *lut, max_t, x, &problem);
+  }
+  problem.SetParameterLowerBound(x, 0, kLafortuneDiffuse.fit_lo);
+  problem.SetParameterUpperBound(x, 0, kLafortuneDiffuse.fit_hi);
+  for (int k = 0; k < lobes; ++k) {
+    for (int i = 0; i < 4; ++i) {
+      const ParamInfo& info = *kLafortuneLobeEntries[i];
+      problem.SetParameterLowerBound(x, 1 + 4 * k + i, info.fit_lo);
+      problem.SetParameterUpperBound(x, 1 + 4 * k + i, info.fit_hi);
+    }
+  }
+  ceres::Solver::Options solver;
+  SetCeresLinearSolver(options.linear_solver, &solver);
+  solver.max_num_iterations = options.max_iterations;
+  solver.function_tolerance = options.joint_function_tolerance;
+  solver.parameter_tolerance = 1e-10;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  out.iterations = static_cast<int>(summary.iterations.size());
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
+  if (!out.usable) return out;
+  switch (lobes) {  // the table of the solution
+    case 0:
+      Factors<0>(by_view, own, max_t, x, lut);
+      break;
+    case 1:
+      Factors<1>(by_view, own, max_t, x, lut);
+      break;
+    case 2:
+      Factors<2>(by_view, own, max_t, x, lut);
+      break;
+    default:
+      Factors<3>(by_view, own, max_t, x, lut);
+  }
+  return out;
+}
+
+void FollowOwnedViews(const std::vector<bool>& own,
+                      const std::vector<glm::dvec3>& views,
+                      std::vector<glm::dvec3>* t) {
+  ViewTable owned;
+  for (size_t k = 0; k < views.size(); ++k) {
+    if (!own[k]) continue;
+    owned.views.push_back(views[k]);
+    owned.color.push_back((*t)[k]);
+    owned.alpha.push_back(1.0);
+  }
+  for (size_t k = 0; k < views.size(); ++k) {
+    if (!own[k]) (*t)[k] = LookupView(owned, views[k]).color;
+  }
+}
+
+JointChannelResult SolveJoint(const TexelSamples& on,
+                              const std::vector<bool>& own,
+                              const LafortuneFitOptions& options, double max_t,
+                              LafortuneParams* p, std::vector<glm::dvec3>* t) {
+  JointChannelResult out;
+  out.usable = true;
+  const int lobes = static_cast<int>(p->lobes.size());
+  const size_t n_views = t->size();
+  bool all_own = true;
+  for (size_t k = 0; k < n_views; ++k) all_own = all_own && own[k];
+  const int rounds = all_own ? 1 : 2;
+  for (int round = 0; round < rounds && out.usable; ++round) {
+    out.converged = true;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> x(LafortuneChannelSize(lobes));
+      LafortuneChannelToArray(*p, c, x.data());
+      std::vector<double> lut(n_views);
+      for (size_t k = 0; k < n_views; ++k) lut[k] = (*t)[k][c];
+      const JointChannelResult r =
+          SolveJointChannel(on, own, c, lobes, options, max_t, x.data(), &lut);
+      out.iterations += r.iterations;
+      out.usable = out.usable && r.usable;
+      out.converged = out.converged && r.converged;
+      if (!r.usable) continue;
+      LafortuneChannelFromArray(x.data(), c, p);
+      for (size_t k = 0; k < n_views; ++k) (*t)[k][c] = lut[k];
+    }
+    FollowOwnedViews(own, on.views, t);
+  }
+  return out;
+}
+
+void NormaliseLookupTable(const std::vector<bool>& own, double max_c,
+                          LafortuneParams* p, std::vector<glm::dvec3>* t) {
+  for (int c = 0; c < 3; ++c) {
+    double mean = 0.0;
+    int owned = 0;
+    for (size_t k = 0; k < t->size(); ++k) {
+      if (!own[k]) continue;
+      mean += (*t)[k][c];
+      ++owned;
+    }
+    if (owned == 0) return;
+    mean /= owned;
+    if (!(mean > 0.0) || !std::isfinite(mean)) continue;
+    LafortuneParams scaled = *p;
+    bool inside = true;
+    scaled.diffuse[c] *= mean;
+    for (LafortuneLobe& lobe : scaled.lobes) {
+      const double f = std::pow(mean, 1.0 / lobe.n[c]);
+      for (glm::dvec3* field : {&lobe.cx, &lobe.cy, &lobe.cz}) {
+        (*field)[c] *= f;
+        inside = inside && std::abs((*field)[c]) <= max_c;
+      }
+    }
+    if (!inside) continue;
+    *p = scaled;
+    for (glm::dvec3& v : *t) v[c] /= mean;
+  }
+}
+
+}  // namespace clothfit

@@ -1,0 +1,52 @@
+// What a Lafortune fit reports about its solution (fitting/lafortune_fit.h):
+// lobe entries on a search limit, the first non-finite sample.
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fitting/lafortune_fit.h"
+
+namespace clothfit {
+
+std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p) {
+  std::vector<LafortuneLimit> out;
+  for (size_t k = 0; k < p.lobes.size(); ++k) {
+    for (int q = 0; q < 4; ++q) {
+      const ParamInfo& info = *kLafortuneLobeEntries[q];
+      if (info.physical) continue;
+      const glm::dvec3& field = p.lobes[k].*kLafortuneLobeFields<double>[q];
+      const double span = info.fit_hi - info.fit_lo;
+      for (int c = 0; c < 3; ++c) {
+        if (field[c] - info.fit_lo < 1e-9 * span ||
+            info.fit_hi - field[c] < 1e-9 * span) {
+          out.push_back({"lobes[" + std::to_string(k) + "]." + info.name +
+                             ChannelSuffix(c),
+                         field[c]});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// Names the first sample whose model value is not finite: the table line of its
+// first row and its directions in the texel's frame.
+std::string LafortuneNonFiniteSample(const TexelSamples& s,
+                                     const std::vector<glm::dvec3>& t,
+                                     const LafortuneParams& p) {
+  for (size_t i = 0; i < s.size(); ++i) {
+    const glm::dvec3 m = t[s.view[i]] * LafortuneF1(p, s.l[i], s.v[i]);
+    if (std::isfinite(glm::dot(m - s.value[i], glm::dvec3(1.0)))) continue;
+    std::ostringstream out;
+    out.precision(6);
+    out << "the model value is (" << m.x << ", " << m.y << ", " << m.z
+        << ") at line " << s.source_line[i] << " of the table, light ("
+        << s.l[i].x << ", " << s.l[i].y << ", " << s.l[i].z << ") and view ("
+        << s.v[i].x << ", " << s.v[i].y << ", " << s.v[i].z
+        << ") in the texel's frame";
+    return out.str();
+  }
+  return "non-finite model values";
+}
+
+}  // namespace clothfit
