@@ -52,10 +52,10 @@ void ReportWeighting(const Weighting& weighting, FitReport* report) {
       weighting.kind() == NoiseKind::kRelative   ? "relative error"
       : weighting.kind() == NoiseKind::kAbsolute ? "error"
                                                  : "error in sigmas";
-  const double f = weighting.level() > 0.0 ? weighting.level() : 1.0;
   report->minimised_rms =
       report->residuals > 0
-          ? f * std::sqrt(2.0 * report->final_cost / report->residuals)
+          ? weighting.WeightLevel() *
+                std::sqrt(2.0 * report->final_cost / report->residuals)
           : 0.0;
   if (report->noise_level_estimated) {
     // F^2 = 2 cost / dof: the weights were those of F = 1.

@@ -38,6 +38,13 @@ struct SolverOptions {
   std::function<void(const std::string&)> progress;
 };
 
+// Whether `value` lies on the bound lower or upper of a fit (within 1e-9
+// of the span): how every fit decides ParameterReport::at_bound.
+inline bool OnFitBound(double value, double lower, double upper) {
+  const double span = upper - lower > 1e-12 ? upper - lower : 1e-12;
+  return value - lower < 1e-9 * span || upper - value < 1e-9 * span;
+}
+
 struct ParameterReport {
   std::string name;
   double value = 0.0;

@@ -71,10 +71,7 @@ std::vector<ParameterReport> LafortuneParameterReports(
       r.free = true;
       r.lower = info.fit_lo;
       r.upper = info.fit_hi;
-      // On a bound as least_squares.cc reports it.
-      const double span = r.upper - r.lower;
-      r.at_bound =
-          r.value - r.lower < 1e-9 * span || r.upper - r.value < 1e-9 * span;
+      r.at_bound = OnFitBound(r.value, r.lower, r.upper);
       r.at_search_limit = r.at_bound && !info.physical;
       out.push_back(r);
     }
@@ -104,13 +101,12 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   fit.report.parameters = LafortuneParameterReports(fit.params.params);
   // The cost is that of the table's values (sigma scales with the value's
   // conversion to rho, lafortune_samples.h), over the samples merged per
-  // light and view; rms and relative_rms are of the rows as rho. No
-  // parameter is counted free for the level estimate (the scale between T
-  // and the lobes is not identifiable).
+  // light and view; rms and relative_rms are of the rows as rho. The level
+  // estimate counts the lobes' entries as free, not the lookup table's.
   ReportWeighting(weighting, &fit.report);
-  fit.report.minimised +=
-      std::string(" of the table's values (") + QuantityName(table.quantity) +
-      "), over merged samples";
+  fit.report.minimised += std::string(" of the table's values (") +
+                          QuantityName(table.quantity) +
+                          "), over merged samples";
   return fit;
 }
 

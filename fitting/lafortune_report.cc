@@ -15,10 +15,8 @@ std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p) {
       const ParamInfo& info = *kLafortuneLobeEntries[q];
       if (info.physical) continue;
       const glm::dvec3& field = p.lobes[k].*kLafortuneLobeFields<double>[q];
-      const double span = info.fit_hi - info.fit_lo;
       for (int c = 0; c < 3; ++c) {
-        if (field[c] - info.fit_lo < 1e-9 * span ||
-            info.fit_hi - field[c] < 1e-9 * span) {
+        if (OnFitBound(field[c], info.fit_lo, info.fit_hi)) {
           out.push_back({"lobes[" + std::to_string(k) + "]." + info.name +
                              ChannelSuffix(c),
                          field[c]});

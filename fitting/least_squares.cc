@@ -205,9 +205,7 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     p.free = spec.free;
     p.lower = spec.lower;
     p.upper = spec.upper;
-    const double span = std::max(1e-12, spec.upper - spec.lower);
-    p.at_bound = spec.free && (p.value - spec.lower < 1e-9 * span ||
-                               spec.upper - p.value < 1e-9 * span);
+    p.at_bound = spec.free && OnFitBound(p.value, spec.lower, spec.upper);
     p.at_search_limit = p.at_bound && !spec.physical_bounds;
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];
@@ -332,6 +330,16 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     }
     return true;
   };
+  // A solve's outcome as the best so far.
+  auto take = [&](const ceres::Solver::Summary& summary,
+                  const std::vector<double>& x) {
+    best.converged = summary.termination_type == ceres::CONVERGENCE;
+    best.termination = ceres::TerminationTypeToString(summary.termination_type);
+    best.message = summary.message;
+    best.final_cost = summary.final_cost;
+    best.residuals = summary.num_residuals;
+    best_x = x;
+  };
   for (size_t s = 0; s < starts.size(); ++s) {
     if (options.progress) {
       options.progress("start " + std::to_string(s + 1) + " of " +
@@ -344,13 +352,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     if (usable && summary.final_cost < best.final_cost) {
       best = FitReport();
       best.usable = true;
-      best.converged = summary.termination_type == ceres::CONVERGENCE;
-      best.termination =
-          ceres::TerminationTypeToString(summary.termination_type);
-      best.message = summary.message;
-      best.final_cost = summary.final_cost;
-      best.residuals = summary.num_residuals;
-      best_x = x;
+      take(summary, x);
     } else if (!best.usable && best_x.empty()) {
       best.termination =
           ceres::TerminationTypeToString(summary.termination_type);
@@ -388,13 +390,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                                  : std::abs(best_x[i]) + 1e-12;
         change = std::max(change, std::abs(x[i] - best_x[i]) / scale);
       }
-      best.converged = summary.termination_type == ceres::CONVERGENCE;
-      best.termination =
-          ceres::TerminationTypeToString(summary.termination_type);
-      best.message = summary.message;
-      best.final_cost = summary.final_cost;
-      best.residuals = summary.num_residuals;
-      best_x = x;
+      take(summary, x);
       if (change < 1e-9) break;
     }
   }

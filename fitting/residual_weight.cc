@@ -68,24 +68,25 @@ Weighting::Weighting(const MeasurementTable& table, const NoiseModel& noise)
   }
 }
 
+glm::dvec3 Weighting::RelativeSigma(const glm::dvec3& v) const {
+  return WeightLevel() * glm::max(glm::abs(v), floor_);
+}
+
 glm::dvec3 Weighting::Sigma(const TableRow& row) const {
-  const double f = level_ > 0.0 ? level_ : 1.0;
   switch (kind_) {
     case NoiseKind::kTable:
       return row.sigma;
     case NoiseKind::kRelative:
-      return f * glm::max(glm::abs(row.value), floor_);
+      return RelativeSigma(row.value);
     default:
-      return glm::dvec3(f);
+      return glm::dvec3(WeightLevel());
   }
 }
 
 glm::dvec3 Weighting::ScaleAt(const TableRow& row,
                               const glm::dvec3& model) const {
   if (kind_ != NoiseKind::kRelative) return Scale(row);
-  const double f = level_ > 0.0 ? level_ : 1.0;
-  const glm::dvec3 sigma = f * glm::max(glm::abs(model), floor_);
-  return glm::dvec3(std::sqrt(row.weight)) / sigma;
+  return glm::dvec3(std::sqrt(row.weight)) / RelativeSigma(model);
 }
 
 glm::dvec3 Weighting::Scale(const TableRow& row) const {

@@ -58,6 +58,8 @@ class Weighting {
   // then the covariance needs no estimate of the noise level.
   bool LevelKnown() const { return kind_ == NoiseKind::kTable || level_ > 0; }
   double level() const { return level_; }
+  // F as the weights use it: the level, or 1 while it is estimated.
+  double WeightLevel() const { return level_ > 0.0 ? level_ : 1.0; }
   const glm::dvec3& floor() const { return floor_; }
 
   // sigma of a row's value per channel: of the measured value (the
@@ -80,6 +82,9 @@ class Weighting {
   glm::dvec3 InverseVariance(const TableRow& row, double k) const;
 
  private:
+  // Relative sigma of a value v: F max(|v|, floor).
+  glm::dvec3 RelativeSigma(const glm::dvec3& v) const;
+
   NoiseKind kind_;
   double level_;
   glm::dvec3 floor_{0.0};
