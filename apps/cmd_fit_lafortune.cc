@@ -66,8 +66,8 @@ int RunFitLafortune(int argc, char** argv) {
             "(slower; docs/lafortune.md)");
   args.Option("solve", "S",
               "alternate (the paper's alternation of lobes and table) or "
-              "joint (both in one solve: the optimum, but unbounded lobes "
-              "where the samples leave them free; docs/lafortune.md)",
+              "joint (both in one solve: the optimum, but T can grow where "
+              "the lobes do not reach; docs/lafortune.md)",
               "alternate");
   args.Option("lut-threshold", "X",
               "stop alternating when T changes less than this (mean relative)",
@@ -199,11 +199,13 @@ int RunFitLafortune(int argc, char** argv) {
     std::printf(
         "  level %zu: %dx%d, %zu samples, mean relative rms %.4g (per-view "
         "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d, per fit %.1f "
-        "alternations, %.0f solver iterations, %d at a search limit\n",
+        "alternations, %.0f solver iterations, %d at a search limit, "
+        "largest directional albedo %.3g, %d scaled to conserve energy\n",
         l, level.width, level.height, level.samples, level.mean_relative_rms,
         level.mean_view_relative_rms, level.lobe_counts[0],
         level.lobe_counts[1], level.lobe_counts[2], level.lobe_counts[3],
-        level.mean_alternations, level.mean_iterations, level.at_search_limit);
+        level.mean_alternations, level.mean_iterations, level.at_search_limit,
+        level.max_albedo, level.energy_scaled);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
@@ -222,6 +224,13 @@ int RunFitLafortune(int argc, char** argv) {
                  "(not converged); the first at "
               << summary.first_at_search_limit << "\n";
   }
+  if (summary.energy_scaled > 0) {
+    std::cerr << "error: " << summary.energy_scaled << " of " << result.fits
+              << " texel fit(s) reflected more than they received and were "
+                 "scaled down to conserve energy (not converged); the first "
+                 "at "
+              << summary.first_energy_scaled << "\n";
+  }
   if (summary.unusable > 0) {
     std::cerr << "error: " << summary.unusable
               << " texel fit(s) reached no usable solution (zero in the "
@@ -229,7 +238,7 @@ int RunFitLafortune(int argc, char** argv) {
               << summary.first_unusable << "\n";
     return 1;
   }
-  return summary.at_search_limit > 0 ? 1 : 0;
+  return summary.at_search_limit > 0 || summary.energy_scaled > 0 ? 1 : 0;
 }
 
 }  // namespace clothfit

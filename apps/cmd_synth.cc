@@ -94,7 +94,9 @@ int RunSynth(int argc, char** argv) {
   args.Option("supersample", "K",
               "gonio: K x K rays per texel and direction (footprint average)",
               std::to_string(VirtualGonioOptions().supersample));
-  args.Option("glossy", "W", "gonio: weight of the glossy term, >= 0",
+  args.Option("glossy", "W",
+              "gonio: weight of the glossy term, in [0, 1] (the diffuse term "
+              "has 1 - W)",
               text_util::FormatNumber(VirtualGonioOptions().glossy));
   args.Option("gap", "G",
               "gonio: space between threads in tile units (0: no holes)",

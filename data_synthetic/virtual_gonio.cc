@@ -82,8 +82,8 @@ void Validate(const VirtualGonioOptions& o) {
   if (!(o.gap >= 0.0 && o.gap < kReferencePitch)) {
     fail("gap must be in [0, 0.5)");
   }
-  if (!(o.glossy >= 0.0) || !std::isfinite(o.glossy)) {
-    fail("glossy must be >= 0");
+  if (!(o.glossy >= 0.0 && o.glossy <= 1.0)) {
+    fail("glossy must be in [0, 1]");
   }
 }
 
@@ -148,8 +148,8 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
   const double step = std::max(kStepFraction * finest, 0.25 / options.grid);
   const std::vector<glm::dvec3> dirs = HemisphereDirections(n);
   const int pairs = n * n;
-  const double gloss_norm =
-      options.glossy * (kGlossyExponent + 2.0) / (2.0 * kPi);
+  const double diffuse_weight = 1.0 - options.glossy;
+  const double gloss_norm = options.glossy / kGlossyBandAlbedo;
 
   MeasurementTable table;
   table.quantity = Quantity::kCosineWeighted;
@@ -203,7 +203,7 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
           const double sin_th = std::sqrt(std::max(0.0, 1.0 - th * th));
           const glm::dvec3 tint = 0.5 * (glm::dvec3(1.0) + h.colour);
           sum +=
-              cos_l * (h.colour / kPi +
+              cos_l * (diffuse_weight * h.colour / kPi +
                        gloss_norm * std::pow(sin_th, kGlossyExponent) * tint);
         }
         TableRow& row =

@@ -43,9 +43,13 @@
 //
 // Shading at a hit with normal n, thread tangent t, thread colour c (radiance
 // per unit irradiance, i.e. the cosine-weighted quantity rho):
-//   rho = V(l) max(n.l, 0) [c / pi + glossy (p + 2) / (2 pi) tint sin(t, h)^p]
-// with h = normalize(l + v), p = 32, tint = (1 + c) / 2, V(l) = 1 unless the
-// shadow ray towards l meets a thread. No interreflections, no ambient.
+//   rho = V(l) max(n.l, 0) [(1 - g) c / pi + g tint sin(t, h)^p / B]
+// with g = glossy in [0, 1], h = normalize(l + v), p = 32, tint = (1 + c) /
+// 2, V(l) = 1 unless the shadow ray towards l meets a thread, and B =
+// 1.4991 the largest albedo of the band sin(t, h)^32 on a facet: the
+// shading's directional albedo is at most (1 - g) c + g tint <= 1, so the
+// measured texels conserve energy (their fits must too, fitting/energy.h).
+// No interreflections, no ambient.
 #pragma once
 
 #include <cstdint>
@@ -64,7 +68,7 @@ struct VirtualGonioOptions {
   uint64_t seed = 1;   // jitter of the sampling, thread colour variation
   double thread_radius = 0.22;  // in tile units (a tile holds 2 x 2 crossings)
   double gap = 0.06;            // space between threads (holes), tile units
-  double glossy = 0.35;         // weight of the glossy term
+  double glossy = 0.35;         // weight of the glossy term, [0, 1]
   int supersample = 2;          // rays per texel per direction (k x k)
   // Resolution of the precomputed height-field grid the rays march through
   // (grid x grid samples of the tile, bilinear lookup). >= 16.

@@ -16,6 +16,11 @@ namespace weave_internal {
 
 // Exponent of the glossy (Kajiya-Kay-like) lobe.
 inline constexpr double kGlossyExponent = 32.0;
+// The largest albedo of the unnormalised band, the integral over l of
+// max(n.l, 0) sin(t, h)^32 on a flat facet (n = z, t = x): 1.4991, at the
+// view along the normal (tests/virtual_gonio_test.cc integrates it). The
+// shading divides the band by it, so that the band's albedo is at most 1.
+inline constexpr double kGlossyBandAlbedo = 1.4991;
 // March step, relative to the smaller of the thread's half-width and
 // half-height; intersections are then refined by bisection.
 inline constexpr double kStepFraction = 0.08;

@@ -124,6 +124,14 @@ std::string FitReportJson(const FitReport& r) {
     j["view_relative_rms"] = r.view_relative_rms;
     j["lut_views"] = r.lut_views;
     j["lut_views_fitted"] = r.lut_views_fitted;
+    j["lut_views_at_energy_bound"] = r.lut_views_at_energy_bound;
+  }
+  if (r.max_albedo >= 0.0) {
+    nlohmann::ordered_json energy;
+    energy["max_albedo"] = r.max_albedo;
+    energy["at"] = r.max_albedo_at;
+    energy["scaled_by"] = r.energy_scale;
+    j["energy"] = energy;
   }
   nlohmann::ordered_json values = nlohmann::ordered_json::object();
   for (const ParameterReport& p : r.parameters) values[p.name] = p.value;
@@ -192,6 +200,24 @@ std::string FitReportText(const FitReport& r,
                     r.lut_views_fitted == 0 ? " (none: T = 1)" : "");
       out << line;
     }
+    if (r.lut_views_at_energy_bound > 0) {
+      std::snprintf(line, sizeof(line),
+                    "lookup table: T of %d view(s) lowered to the energy bound "
+                    "(the texel would reflect more than it receives there)\n",
+                    r.lut_views_at_energy_bound);
+      out << line;
+    }
+  }
+  if (r.max_albedo >= 0.0) {
+    out << "energy: largest " << r.max_albedo_at;
+    if (r.energy_scale < 1.0) {
+      std::snprintf(line, sizeof(line), "; scaled by %.4g to conserve energy",
+                    r.energy_scale);
+      out << line;
+    } else if (r.max_albedo > 1.0) {
+      out << ": above 1, the model does not conserve energy there";
+    }
+    out << "\n";
   }
   if (r.rows_not_used > 0) {
     std::snprintf(line, sizeof(line),

@@ -101,9 +101,20 @@ struct FitReport {
   int starts = 1;  // multi-start: how many solves were run
   // A lookup-table fit: the views with an entry of their own, of all.
   int lut_views_fitted = 0, lut_views = 0;
+  // Of those, the views whose T was lowered to the energy bound (T times
+  // the lobes' albedo at the view = 1, fitting/energy.h).
+  int lut_views_at_energy_bound = 0;
   // Free entries on a bound that only limits the search (also where the
   // parameters are not listed: a texel of a map).
   int at_search_limit = 0;
+  // The white-furnace check of the fitted model (fitting/energy.h): its
+  // largest directional albedo (< 0: not checked), where, and on which
+  // side; energy_scale < 1: the fit's model reflected more than it
+  // received and was scaled by that factor to conserve energy, which makes
+  // the fit not converged.
+  double max_albedo = -1.0;
+  std::string max_albedo_at;  // DescribeEnergy
+  double energy_scale = 1.0;
   std::vector<ParameterReport> parameters;
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".

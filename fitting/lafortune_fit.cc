@@ -12,6 +12,8 @@
 #include <unordered_map>
 
 #include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/energy.h"
+#include "fitting/lafortune_bounds_internal.h"
 #include "fitting/lafortune_joint_internal.h"
 #include "fitting/residual_weight.h"
 #include "io/input_error.h"
@@ -28,12 +30,15 @@ namespace {
 // lobes (LobeSum, models/lafortune.h).
 using ChannelTerms = LafortuneSampleTerms;
 
+// The variables are the bounded ones (fitting/lafortune_bounds_internal.h).
 template <int kLobes>
 struct ChannelResidual {
   const std::vector<ChannelTerms> terms;
 
   template <typename T>
-  bool operator()(const T* x, T* residual) const {
+  bool operator()(const T* y, T* residual) const {
+    T x[1 + 4 * kLobes];
+    LobesFromBounded(y, kLobes, x);
     for (size_t i = 0; i < terms.size(); ++i) {
       const ChannelTerms& s = terms[i];
       residual[i] = WeightedResidual(
@@ -79,17 +84,20 @@ ceres::CostFunction* MakeChannelCost(int lobes,
   }
 }
 
-// The fits' bounds on C (kLafortuneCx, models/lafortune.h), and on T: a
-// non-negative factor, at most 1e3.
-constexpr double kMaxC = kLafortuneCx.fit_hi, kMaxT = 1e3;
+// The fits' bound on T: a non-negative factor, at most 1e3.
+constexpr double kMaxT = 1e3;
 
 // Iteration cap of the lobe fits after the first pass (warm starts).
 constexpr int kLaterPassIterations = 8;
 
-// One Levenberg-Marquardt pass on one channel; returns iterations.
+// One Levenberg-Marquardt pass on one channel (x in the channel layout,
+// solved in the bounded variables: a start outside the bounds starts on
+// them); returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
                  int channel, int lobes, const LafortuneFitOptions& fit,
                  double* x) {
+  std::vector<double> y = LobesToBounded(x, lobes);
+  LobesFromBounded(y.data(), lobes, x);
   // Ceres refuses (and logs) a start whose cost is not finite; such a start
   // (a lobe power overflowing) is left as it is and the caller sees the
   // non-finite cost.
@@ -103,18 +111,8 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   ceres::Problem problem;
   problem.AddResidualBlock(
       MakeChannelCost(lobes, MakeChannelTerms(samples, lut, channel)), nullptr,
-      x);
-  // The channel layout's entries: rho_d, then each lobe's Cx, Cy, Cz, N.
-  const ParamInfo* const lobe_entries[] = {&kLafortuneCx, &kLafortuneCy,
-                                           &kLafortuneCz, &kLafortuneN};
-  problem.SetParameterLowerBound(x, 0, kLafortuneDiffuse.fit_lo);
-  problem.SetParameterUpperBound(x, 0, kLafortuneDiffuse.fit_hi);
-  for (int k = 0; k < lobes; ++k) {
-    for (int i = 0; i < 4; ++i) {
-      problem.SetParameterLowerBound(x, 1 + 4 * k + i, lobe_entries[i]->fit_lo);
-      problem.SetParameterUpperBound(x, 1 + 4 * k + i, lobe_entries[i]->fit_hi);
-    }
-  }
+      y.data());
+  SetBoundedLobeBounds(lobes, y.data(), &problem);
   ceres::Solver::Options options;
   SetCeresLinearSolver(fit.linear_solver, &options);
   options.max_num_iterations = fit.max_iterations;
@@ -123,6 +121,7 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  LobesFromBounded(y.data(), lobes, x);
   return static_cast<int>(summary.iterations.size());
 }
 
@@ -166,9 +165,7 @@ int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
       x[0] *= scale;
       for (int k = 0; k < lobes; ++k) {
         for (int i = 1; i <= 3; ++i) {
-          x[4 * k + i] =
-              std::clamp(x[4 * k + i] * std::pow(scale, 1.0 / x[4 * k + 4]),
-                         -kMaxC, kMaxC);
+          x[4 * k + i] *= std::pow(scale, 1.0 / x[4 * k + 4]);
         }
       }
     }
@@ -355,7 +352,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       r = SolveJoint(samples, own, options, kMaxT, &best, &t);
       out.report.iterations += r.iterations;
     }
-    if (r.usable) NormaliseLookupTable(own, kMaxC, &best, &t);
+    if (r.usable) NormaliseLookupTable(own, &best, &t);
     double change = 0.0;
     int counted = 0;
     for (size_t k = 0; k < n_views; ++k) {
@@ -367,7 +364,9 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     }
     out.report.lut_change = counted ? change / counted : 0.0;
     ++out.report.alternations;
-    lut_converged = first_converged && r.converged && r.usable;
+    // The solve on all samples decides; the first pass only gave its start.
+    lut_converged =
+        (&first != &samples || first_converged) && r.converged && r.usable;
   }
   if (lut && !joint) {
     for (int pass = 1; pass < options.max_alternations; ++pass) {
@@ -445,8 +444,26 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     out.report.iterations += FitLobes(samples, t, options, false, &p);
     if (Finite(p)) best = p;
   }
+  // Energy. At a stored view the albedo is T(v) times the bracket's
+  // (models/albedo.h), so a T that would make the texel reflect more than
+  // it receives there is lowered to the bound, T = 1 / albedo: a view the
+  // lobes hardly reach otherwise takes a huge T. A texel still above 1
+  // somewhere (the lobes' sum, or T between the stored views) is scaled
+  // down until its largest albedo is 1, and says so.
   out.params.params = best;
+  if (lut) {
+    out.report.lut_views_at_energy_bound =
+        BoundLookupTableByEnergy(best, samples.normal, samples.views, &t);
+  }
   out.params.lut.color = t;
+  const EnergyCheck energy = LafortuneEnergy(out.params);
+  out.report.max_albedo = energy.max_albedo;
+  out.report.max_albedo_at = DescribeEnergy(energy);
+  if (energy.max_albedo > 1.0 && std::isfinite(energy.max_albedo)) {
+    out.report.energy_scale = 1.0 / energy.max_albedo;
+    ScaleLafortuneAlbedo(out.report.energy_scale, &best);
+    out.params.params = best;
+  }
   double se = 0.0, ss = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
     const glm::dvec3 m =
@@ -463,24 +480,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     out.report.message = LafortuneNonFiniteSample(samples, t, best);
     return out;
   }
-  // A lobe entry on a search limit: the solver wanted to leave the range
-  // where a lobe means something (the rule of the other fits,
-  // fitting/least_squares.cc).
-  const std::vector<LafortuneLimit> limits = LafortuneAtSearchLimit(best);
-  out.report.at_search_limit = static_cast<int>(limits.size());
-  if (!limits.empty()) {
-    out.report.converged = false;
-    std::ostringstream msg;
-    msg << limits.front().name << " stopped at its search limit "
-        << limits.front().value;
-    if (limits.size() > 1) {
-      msg << " (and " << limits.size() - 1 << " more lobe entries)";
-    }
-    msg << ": a lobe collapsed to a constant (N = 0.5) or is narrower than "
-           "the data resolve (N = 200, |C| = 3); try fewer lobes (--lobes, "
-           "--tolerance)";
-    out.report.message = msg.str();
-  }
+  ReportLafortuneLimits(best, &out.report);
   return out;
 }
 

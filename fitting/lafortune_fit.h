@@ -29,13 +29,15 @@ namespace clothfit {
 enum class LafortuneSolve { kJoint, kAlternate };
 
 struct LafortuneFitOptions {
-  // The paper's alternation by default: the joint solve reaches the
+  // The paper's alternation by default. The joint solve reaches the
   // optimum of representable data (relative RMS 2e-14 where the
-  // alternation stops at 0.027), but where the samples leave the lobes
-  // free (few samples per view, directions never measured) it finds lobes
-  // that are huge away from the samples (values 1e23 at unmeasured
-  // directions of a 16 x 16 table, tests/lafortune_test.cc), and the
-  // lobes have no bound on their peak yet (docs/lafortune.md).
+  // alternation stops at 0.027), and its lobes are bounded now
+  // (fitting/lafortune_bounds_internal.h), but where a view's samples are
+  // out of the lobes' reach its projected T grows (up to 1e3), and the
+  // table's interpolation carries that T to directions the lobes do reach:
+  // on 4 x 4 virtual-gonio texels 5 of 16 came out 8-370 times above
+  // energy conservation and had to be scaled down, where the alternation
+  // keeps them plausible (docs/lafortune.md).
   LafortuneSolve solve = LafortuneSolve::kAlternate;
   // The joint solve stops when an iteration lowers the cost by less than
   // this fraction (or after max_iterations).
@@ -102,15 +104,21 @@ struct LafortuneFitOptions {
 using LafortuneFitResult = FitResult<LafortuneModel>;
 
 // The lobe entries of `p` that lie on a bound that only limits the search
-// (|C| = 3, N = 0.5 or 200; models/lafortune.h), as report names
+// (N = 0.5 or 200; models/lafortune.h), as report names
 // ("lobes[1].N_r") with their values: a lobe the solver pushed to the edge
 // of its range - a collapsed lobe (N = 0.5, a constant in disguise) or one
 // narrower than the data resolve (N = 200) - which is not a converged fit.
+// |C| at its reach (the energy normalisation) is a physical bound.
 struct LafortuneLimit {
   std::string name;
   double value;
 };
 std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p);
+
+// Makes the report of a solution p not converged, with a message, when a
+// lobe entry is on a search limit (their count in at_search_limit) or the
+// model was scaled to conserve energy (report->energy_scale < 1).
+void ReportLafortuneLimits(const LafortuneParams& p, FitReport* report);
 
 // "the model value is (...) at line L of the table, light (...) and view
 // (...) in the texel's frame" for the first sample whose model value with

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/lafortune_bounds_internal.h"
 #include "fitting/lafortune_joint_internal.h"
 #include "fitting/residual_weight.h"
 #include "models/lafortune.h"
@@ -22,6 +23,7 @@ using SampleTerms = LafortuneSampleTerms;
 // the residual is that of the lobes with T projected out (variable
 // projection, Golub and Pereyra 1973); for another view it is the fixed
 // t.
+// The variables are the bounded ones (fitting/lafortune_bounds_internal.h).
 template <int kLobes>
 struct ViewResidual {
   const std::vector<SampleTerms> terms;
@@ -29,7 +31,9 @@ struct ViewResidual {
   const double fixed_t, max_t;
 
   template <typename T>
-  bool operator()(const T* x, T* residual) const {
+  bool operator()(const T* y, T* residual) const {
+    T x[1 + 4 * kLobes];
+    LobesFromBounded(y, kLobes, x);
     for (size_t i = 0; i < terms.size(); ++i) {
       const SampleTerms& s = terms[i];
       residual[i] = LobeSum(x, kLobes, s.xx, s.yy, s.zz) * s.factor;
@@ -61,9 +65,12 @@ struct ViewResidual {
         new ViewResidual{std::move(terms), own, fixed_t, max_t}, n);
   }
 
-  // The factor of `x` (double) for this view: what the residual uses.
-  double Factor(const double* x) const {
+  // The factor of the bounded variables y for this view: what the
+  // residual uses.
+  double Factor(const double* y) const {
     if (!own) return fixed_t;
+    double x[1 + 4 * kLobes];
+    LobesFromBounded(y, kLobes, x);
     double fy = 0.0, ff = 0.0;
     for (size_t i = 0; i < terms.size(); ++i) {
       const double f =
@@ -112,6 +119,8 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
                                      std::vector<double>* lut) {
   JointChannelResult out;
   const size_t n_views = lut->size();
+  std::vector<double> y = LobesToBounded(x, lobes);
+  LobesFromBounded(y.data(), lobes, x);
   std::vector<std::vector<SampleTerms>> by_view(n_views);
   double start_cost = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
@@ -133,29 +142,22 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
   // Ceres refuses (and logs) a start whose cost is not finite.
   if (!std::isfinite(start_cost)) return out;
   ceres::Problem problem;
-  problem.AddParameterBlock(x, LafortuneChannelSize(lobes));
+  double* const v = y.data();
+  problem.AddParameterBlock(v, LafortuneChannelSize(lobes));
   switch (lobes) {
     case 0:
-      AddViews<0>(by_view, own, *lut, max_t, x, &problem);
+      AddViews<0>(by_view, own, *lut, max_t, v, &problem);
       break;
     case 1:
-      AddViews<1>(by_view, own, *lut, max_t, x, &problem);
+      AddViews<1>(by_view, own, *lut, max_t, v, &problem);
       break;
     case 2:
-      AddViews<2>(by_view, own, *lut, max_t, x, &problem);
+      AddViews<2>(by_view, own, *lut, max_t, v, &problem);
       break;
     default:
-      AddViews<3>(by_view, own, *lut, max_t, x, &problem);
+      AddViews<3>(by_view, own, *lut, max_t, v, &problem);
   }
-  problem.SetParameterLowerBound(x, 0, kLafortuneDiffuse.fit_lo);
-  problem.SetParameterUpperBound(x, 0, kLafortuneDiffuse.fit_hi);
-  for (int k = 0; k < lobes; ++k) {
-    for (int i = 0; i < 4; ++i) {
-      const ParamInfo& info = *kLafortuneLobeEntries[i];
-      problem.SetParameterLowerBound(x, 1 + 4 * k + i, info.fit_lo);
-      problem.SetParameterUpperBound(x, 1 + 4 * k + i, info.fit_hi);
-    }
-  }
+  SetBoundedLobeBounds(lobes, v, &problem);
   ceres::Solver::Options solver;
   SetCeresLinearSolver(options.linear_solver, &solver);
   solver.max_num_iterations = options.max_iterations;
@@ -169,18 +171,19 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
   if (!out.usable) return out;
+  LobesFromBounded(v, lobes, x);
   switch (lobes) {  // the table of the solution
     case 0:
-      Factors<0>(by_view, own, max_t, x, lut);
+      Factors<0>(by_view, own, max_t, v, lut);
       break;
     case 1:
-      Factors<1>(by_view, own, max_t, x, lut);
+      Factors<1>(by_view, own, max_t, v, lut);
       break;
     case 2:
-      Factors<2>(by_view, own, max_t, x, lut);
+      Factors<2>(by_view, own, max_t, v, lut);
       break;
     default:
-      Factors<3>(by_view, own, max_t, x, lut);
+      Factors<3>(by_view, own, max_t, v, lut);
   }
   return out;
 }
@@ -232,8 +235,8 @@ JointChannelResult SolveJoint(const TexelSamples& on,
   return out;
 }
 
-void NormaliseLookupTable(const std::vector<bool>& own, double max_c,
-                          LafortuneParams* p, std::vector<glm::dvec3>* t) {
+void NormaliseLookupTable(const std::vector<bool>& own, LafortuneParams* p,
+                          std::vector<glm::dvec3>* t) {
   for (int c = 0; c < 3; ++c) {
     double mean = 0.0;
     int owned = 0;
@@ -246,16 +249,15 @@ void NormaliseLookupTable(const std::vector<bool>& own, double max_c,
     mean /= owned;
     if (!(mean > 0.0) || !std::isfinite(mean)) continue;
     LafortuneParams scaled = *p;
-    bool inside = true;
     scaled.diffuse[c] *= mean;
     for (LafortuneLobe& lobe : scaled.lobes) {
       const double f = std::pow(mean, 1.0 / lobe.n[c]);
-      for (glm::dvec3* field : {&lobe.cx, &lobe.cy, &lobe.cz}) {
-        (*field)[c] *= f;
-        inside = inside && std::abs((*field)[c]) <= max_c;
-      }
+      for (glm::dvec3* field : {&lobe.cx, &lobe.cy, &lobe.cz}) (*field)[c] *= f;
     }
-    if (!inside) continue;
+    if (!LobesWithinReach(scaled) ||
+        scaled.diffuse[c] > kLafortuneDiffuse.fit_hi) {
+      continue;
+    }
     *p = scaled;
     for (glm::dvec3& v : *t) v[c] /= mean;
   }

@@ -59,8 +59,9 @@ JointChannelResult SolveJoint(const TexelSamples& on,
 // The gauge: T times f1 is unchanged when T is divided and f1 multiplied
 // by the same s (rho_d by s, each lobe's C by s^(1/N)). With s the mean T
 // of the owned views, per channel, the table's mean is 1; a channel whose
-// C would leave [-max_c, max_c] keeps its scale.
-void NormaliseLookupTable(const std::vector<bool>& own, double max_c,
-                          LafortuneParams* p, std::vector<glm::dvec3>* t);
+// lobes would leave their bounds (LobesWithinReach, rho_d <= 1 / pi)
+// keeps its scale.
+void NormaliseLookupTable(const std::vector<bool>& own, LafortuneParams* p,
+                          std::vector<glm::dvec3>* t);
 
 }  // namespace clothfit

@@ -58,30 +58,32 @@ LafortuneFitResult FitTexelRows(const MeasurementTable& table,
 namespace {
 
 // The values of a Lafortune model's table entries as report parameters
-// ("diffuse_r", "lobes[1].N_b"), free, with their fit bounds.
+// ("diffuse_r", "lobes[1].N_b"), free, with their fit bounds: a lobe's C
+// within its reach at the lobe's N (models/lafortune.h).
 std::vector<ParameterReport> LafortuneParameterReports(
     const LafortuneParams& p) {
   std::vector<ParameterReport> out;
   auto add = [&](const ParamInfo& info, const std::string& prefix,
-                 const glm::dvec3& field) {
+                 const glm::dvec3& field, const glm::dvec3* n) {
     for (int c = 0; c < 3; ++c) {
       ParameterReport r;
       r.name = prefix + info.name + ChannelSuffix(c);
       r.value = field[c];
       r.free = true;
-      r.lower = info.fit_lo;
-      r.upper = info.fit_hi;
+      const bool c_entry = n != nullptr && &info != &kLafortuneN;
+      r.upper = c_entry ? LafortuneLobeReach((*n)[c]) : info.fit_hi;
+      r.lower = c_entry ? -r.upper : info.fit_lo;
       r.at_bound = OnFitBound(r.value, r.lower, r.upper);
       r.at_search_limit = r.at_bound && !info.physical;
       out.push_back(r);
     }
   };
-  add(kLafortuneDiffuse, "", p.diffuse);
+  add(kLafortuneDiffuse, "", p.diffuse, nullptr);
   for (size_t k = 0; k < p.lobes.size(); ++k) {
     const std::string prefix = "lobes[" + std::to_string(k) + "].";
     VisitParamsConst(p.lobes[k],
                      [&](const ParamInfo& info, const glm::dvec3& field) {
-                       add(info, prefix, field);
+                       add(info, prefix, field, &p.lobes[k].n);
                      });
   }
   return out;
@@ -126,12 +128,21 @@ LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
       if (!t.report.usable && out.unusable++ == 0) {
         out.first_unusable = where + t.report.message;
       }
+      // Scaled to conserve energy: counted as such, not also as a cap.
+      const bool scaled = t.report.usable && t.report.energy_scale < 1.0;
+      if (scaled) {
+        ++s.energy_scaled;
+        if (out.energy_scaled++ == 0) {
+          out.first_energy_scaled = where + t.report.max_albedo_at;
+        }
+      }
+      s.max_albedo = std::max(s.max_albedo, t.report.max_albedo);
       if (t.report.usable && t.report.at_search_limit > 0) {
         ++s.at_search_limit;
         if (out.at_search_limit++ == 0) {
           out.first_at_search_limit = where + t.report.message;
         }
-      } else if (t.report.usable && !t.report.converged &&
+      } else if (t.report.usable && !t.report.converged && !scaled &&
                  out.not_converged++ == 0) {
         out.first_not_converged = where + t.report.termination;
       }
@@ -310,12 +321,15 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
     level["height"] = l.height;
     level["mean_relative_rms"] = l.mean_relative_rms;
     level["at_search_limit"] = l.at_search_limit;
+    level["energy_scaled"] = l.energy_scaled;
+    level["max_albedo"] = l.max_albedo;
     per_level.push_back(level);
   }
   fit["levels"] = per_level;
   fit["unusable"] = summary.unusable;
   fit["at_search_limit"] = summary.at_search_limit;
   fit["alternation_cap"] = summary.not_converged;
+  fit["energy_scaled"] = summary.energy_scaled;
   meta["fit"] = fit;
   mipmap.metadata_json = meta.dump();
   return mipmap;

@@ -90,12 +90,18 @@ struct LafortuneLevelSummary {
   int lobe_counts[4] = {0, 0, 0, 0};  // texels with 0..3 lobes
   double mean_alternations = 0.0, mean_iterations = 0.0;
   int at_search_limit = 0;  // texels with a lobe entry at a search limit
+  // Texels scaled down to conserve energy (FitReport::energy_scale), and
+  // the largest directional albedo of the level's written texels before
+  // that scaling.
+  int energy_scaled = 0;
+  double max_albedo = 0.0;
 };
 struct LafortuneMipSummary {
   std::vector<LafortuneLevelSummary> levels;
-  int unusable = 0, not_converged = 0, at_search_limit = 0;
+  int unusable = 0, not_converged = 0, at_search_limit = 0, energy_scaled = 0;
   // "level L, texel (x, y): why" of the first of each.
-  std::string first_unusable, first_not_converged, first_at_search_limit;
+  std::string first_unusable, first_not_converged, first_at_search_limit,
+      first_energy_scaled;
   double worst_relative_rms = 0.0;
 };
 LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result);

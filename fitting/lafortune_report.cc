@@ -1,5 +1,6 @@
 // What a Lafortune fit reports about its solution (fitting/lafortune_fit.h):
-// lobe entries on a search limit, the first non-finite sample.
+// lobe entries on a search limit, energy scaling, the first non-finite
+// sample.
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,6 +26,39 @@ std::vector<LafortuneLimit> LafortuneAtSearchLimit(const LafortuneParams& p) {
     }
   }
   return out;
+}
+
+void ReportLafortuneLimits(const LafortuneParams& p, FitReport* report) {
+  // A lobe entry on a search limit: the solver wanted to leave the range
+  // where a lobe means something (the rule of the other fits,
+  // fitting/least_squares.cc).
+  const std::vector<LafortuneLimit> limits = LafortuneAtSearchLimit(p);
+  report->at_search_limit = static_cast<int>(limits.size());
+  if (!limits.empty()) {
+    report->converged = false;
+    std::ostringstream msg;
+    msg << limits.front().name << " stopped at its search limit "
+        << limits.front().value;
+    if (limits.size() > 1) {
+      msg << " (and " << limits.size() - 1 << " more lobe entries)";
+    }
+    msg << ": a lobe collapsed to a constant (N = 0.5) or is narrower than "
+           "the data resolve (N = 200); try fewer lobes (--lobes, "
+           "--tolerance)";
+    report->message = msg.str();
+  }
+  if (report->energy_scale < 1.0) {
+    report->converged = false;
+    std::ostringstream msg;
+    msg.precision(4);
+    msg << "the fitted model reflected more than it received, "
+        << report->max_albedo_at << "; it was scaled by "
+        << report->energy_scale
+        << " to conserve energy (data brighter than a physical surface: "
+           "check the table's calibration)";
+    if (!report->message.empty()) msg << "; " << report->message;
+    report->message = msg.str();
+  }
 }
 
 // Names the first sample whose model value is not finite: the table line of its

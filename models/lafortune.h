@@ -36,18 +36,38 @@
 namespace clothfit {
 
 // The parameter table (models/params.h); every entry per channel (r, g,
-// b). The fit bounds keep every lobe value finite: the lobe base a =
-// C . (l * v) is at most |Cx| + |Cy| + |Cz| <= 9 for |C| <= 3, and
-// 9^200 ~ 1e191; N below 0.5 makes a lobe a near-constant.
+// b). A lobe's peak over the hemisphere is |C|_inf^N: the base
+// a = C . (l * v) is at most max_i |C_i| for unit l and v (reached at
+// l = v along the axis of the largest |C_i|, grazing for Cx and Cy). The
+// fits keep that peak at most (N + 2) / (2 pi), the peak of a cosine lobe
+// whose albedo at normal incidence is 1 (the energy normalisation of the
+// modified Phong lobe, Lafortune and Willems 1994): |C_i| <=
+// LafortuneLobeReach(N) = ((N + 2) / (2 pi))^(1/N), at most 1.0693 (at
+// N = 12.9), a physical bound. N below 0.5 makes a lobe a near-constant,
+// above 200 narrower than any measurement resolves: search limits.
+// The largest LafortuneLobeReach over N (1.06923 at N = 12.94), the
+// outer fit bound of |C|.
+inline constexpr double kLafortuneMaxReach = 1.0693;
+
+// The fits' bound on |Cx|, |Cy|, |Cz| of a lobe with exponent n: the lobe's
+// peak |C|_inf^N is then at most (N + 2) / (2 pi) (the table's comment).
+template <typename T>
+T LafortuneLobeReach(const T& n) {
+  using std::exp;
+  using std::log;
+  return exp(log((n + T(2.0)) / T(2.0 * kPi)) / n);
+}
+
 inline constexpr ParamInfo kLafortuneDiffuse = {
     "diffuse",
-    "unitless",
-    "diffuse reflectance rho_d",
+    "1/sr",
+    "diffuse term rho_d of the bracket (a BRDF value; its albedo is "
+    "pi rho_d, at most 1 in a fit)",
     {0.0, kInfinity},
     0.0,
-    1e3,
+    1.0 / kPi,
     true,
-    {0.5, 0.5, 0.5},
+    {0.25, 0.25, 0.25},
     "Daubert et al. 2001, eq. 2 (rho)",
     3};
 inline constexpr ParamInfo kLafortuneCx = {
@@ -55,9 +75,9 @@ inline constexpr ParamInfo kLafortuneCx = {
     "unitless",
     "weight of l_x v_x in a lobe (any sign)",
     {-kInfinity, kInfinity},
-    -3.0,
-    3.0,
-    false,
+    -kLafortuneMaxReach,
+    kLafortuneMaxReach,
+    true,
     {-1.0, -1.0, -1.0},
     "Daubert et al. 2001, eq. 2 (C_x); Lafortune et al. 1997",
     3};
@@ -66,9 +86,9 @@ inline constexpr ParamInfo kLafortuneCy = {
     "unitless",
     "weight of l_y v_y in a lobe (any sign)",
     {-kInfinity, kInfinity},
-    -3.0,
-    3.0,
-    false,
+    -kLafortuneMaxReach,
+    kLafortuneMaxReach,
+    true,
     {-1.0, -1.0, -1.0},
     "Daubert et al. 2001, eq. 2 (C_y); Lafortune et al. 1997",
     3};
@@ -77,9 +97,9 @@ inline constexpr ParamInfo kLafortuneCz = {
     "unitless",
     "weight of l_z v_z in a lobe (any sign)",
     {-kInfinity, kInfinity},
-    -3.0,
-    3.0,
-    false,
+    -kLafortuneMaxReach,
+    kLafortuneMaxReach,
+    true,
     {1.0, 1.0, 1.0},
     "Daubert et al. 2001, eq. 2 (C_z); Lafortune et al. 1997",
     3};

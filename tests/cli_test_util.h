@@ -70,11 +70,13 @@ inline RunResult RunClothfit(const std::filesystem::path& dir,
 }
 
 // A texture-map fit that wrote its map: exit 0, or exit 1 because some
-// texel has a lobe entry at a search limit (named, the map still written).
+// texel has a lobe entry at a search limit or was scaled down to conserve
+// energy (named, the map still written).
 inline bool WroteTextureMap(const RunResult& r) {
   return r.status == 0 ||
          (r.status == 1 &&
-          r.err.find("at a search limit") != std::string::npos &&
+          (r.err.find("at a search limit") != std::string::npos ||
+           r.err.find("scaled down to conserve energy") != std::string::npos) &&
           r.err.find("no usable solution") == std::string::npos);
 }
 

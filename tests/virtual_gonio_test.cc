@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "data_synthetic/weave_surface_internal.h"
 #include "io/input_error.h"
 #include "models/math.h"
 
@@ -35,6 +36,39 @@ glm::dvec3 TexelMean(const MeasurementTable& table, int s, int t, int texels,
   const size_t count = static_cast<size_t>(pairs) * pairs;
   for (size_t k = begin; k < begin + count; ++k) sum += table.rows[k].value;
   return sum / static_cast<double>(count);
+}
+
+// The glossy band's normaliser: the integral over the light of max(n.l, 0)
+// sin(t, h)^32 on a flat facet is largest at the view along the normal,
+// where it is kGlossyBandAlbedo, so the shading's albedo is at most
+// (1 - glossy) c + glossy tint <= 1.
+TEST(VirtualGonioTest, GlossyBandNormaliserIsTheBandsLargestAlbedo) {
+  const int n = 300;
+  auto band = [&](const glm::dvec3& v) {
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) {
+      const double theta = (i + 0.5) / n * 0.5 * kPi;
+      for (int j = 0; j < 2 * n; ++j) {
+        const double phi = (j + 0.5) / (2 * n) * 2.0 * kPi;
+        const glm::dvec3 l(std::sin(theta) * std::cos(phi),
+                           std::sin(theta) * std::sin(phi), std::cos(theta));
+        const glm::dvec3 h = glm::normalize(l + v);
+        sum +=
+            std::pow(1.0 - h.x * h.x, 0.5 * weave_internal::kGlossyExponent) *
+            l.z * std::sin(theta) * (0.5 * kPi / n) * (kPi / n);
+      }
+    }
+    return sum;
+  };
+  EXPECT_NEAR(band(glm::dvec3(0.0, 0.0, 1.0)),
+              weave_internal::kGlossyBandAlbedo, 2e-3);
+  for (double deg : {20.0, 45.0, 70.0, 89.0}) {
+    const double t = deg * kPi / 180.0;
+    for (const glm::dvec3& v : {glm::dvec3(std::sin(t), 0.0, std::cos(t)),
+                                glm::dvec3(0.0, std::sin(t), std::cos(t))}) {
+      EXPECT_LT(band(v), weave_internal::kGlossyBandAlbedo) << deg;
+    }
+  }
 }
 
 TEST(VirtualGonioTest, ParsesPatternNames) {

@@ -1,0 +1,112 @@
+#include "fitting/energy.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "models/albedo.h"
+
+namespace clothfit {
+namespace {
+
+void Consider(const glm::dvec3& albedo, const glm::dvec3& d, EnergyCheck* e) {
+  const double a = std::max({albedo.x, albedo.y, albedo.z});
+  // A non-finite albedo is larger than any.
+  if (!(a <= e->max_albedo)) {
+    e->max_albedo = std::isfinite(a) ? a : HUGE_VAL;
+    e->direction = d;
+  }
+}
+
+}  // namespace
+
+EnergyCheck LafortuneEnergy(const LafortuneModel& m) {
+  EnergyCheck out;
+  std::vector<glm::dvec3> dirs = FurnaceDirections(12);
+  for (const glm::dvec3& v : m.lut.views) {
+    const double len = glm::length(v);
+    if (len > 0.0 && v.z > 0.0) dirs.push_back(v / len);
+  }
+  const TexelFrame frame = MakeTexelFrame(m.normal);
+  std::vector<glm::dvec3> local(dirs.size());
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    local[i] = ToTexelFrame(frame, dirs[i]);
+  }
+  const std::vector<glm::dvec3> bracket = LafortuneBracketAlbedos(
+      m.params, local,
+      std::vector<glm::dvec3>(dirs.size(), glm::dvec3(0.0, 0.0, 1.0)));
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    Consider(LookupView(m.lut, dirs[i]).color * bracket[i], dirs[i], &out);
+  }
+  return out;
+}
+
+EnergyCheck ModelEnergy(const ModelParams& params) {
+  if (const auto* m = std::get_if<LafortuneModel>(&params)) {
+    return LafortuneEnergy(*m);
+  }
+  EnergyCheck out;
+  const HemisphereQuadrature q = MakeHemisphereQuadrature(36);
+  auto rho = [&](const glm::dvec3& wi, const glm::dvec3& wo) {
+    return Evaluate(params, wi, wo, Quantity::kCosineWeighted);
+  };
+  for (const glm::dvec3& d : FurnaceDirections(8)) {
+    Consider(QuadratureViewAlbedo(rho, d, q), d, &out);
+  }
+  return out;
+}
+
+int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
+                             const std::vector<glm::dvec3>& views,
+                             std::vector<glm::dvec3>* t) {
+  const TexelFrame frame = MakeTexelFrame(normal);
+  std::vector<glm::dvec3> local(views.size());
+  for (size_t k = 0; k < views.size(); ++k) {
+    local[k] = ToTexelFrame(frame, glm::normalize(views[k]));
+  }
+  const std::vector<glm::dvec3> bracket = LafortuneBracketAlbedos(
+      p, local,
+      std::vector<glm::dvec3>(views.size(), glm::dvec3(0.0, 0.0, 1.0)));
+  int lowered = 0;
+  for (size_t k = 0; k < views.size(); ++k) {
+    if (!(views[k].z > 0.0)) continue;
+    bool low = false;
+    for (int c = 0; c < 3; ++c) {
+      if ((*t)[k][c] * bracket[k][c] > 1.0) {
+        (*t)[k][c] = 1.0 / bracket[k][c];
+        low = true;
+      }
+    }
+    lowered += low ? 1 : 0;
+  }
+  return lowered;
+}
+
+void ScaleLafortuneAlbedo(double s, LafortuneParams* p) {
+  p->diffuse *= s;
+  for (LafortuneLobe& lobe : p->lobes) {
+    for (int c = 0; c < 3; ++c) {
+      const double f = std::pow(s, 1.0 / lobe.n[c]);
+      lobe.cx[c] *= f;
+      lobe.cy[c] *= f;
+      lobe.cz[c] *= f;
+    }
+  }
+}
+
+std::string DescribeEnergy(const EnergyCheck& e) {
+  const double theta =
+      std::acos(std::clamp(e.direction.z, -1.0, 1.0)) * 180.0 / kPi;
+  double phi = std::atan2(e.direction.y, e.direction.x) * 180.0 / kPi;
+  if (phi < 0.0) phi += 360.0;
+  if (theta < 1e-6) phi = 0.0;
+  char text[128];
+  std::snprintf(text, sizeof(text),
+                "directional albedo %.4g (at theta %.4g, phi %.4g degrees)",
+                e.max_albedo, theta, phi);
+  return text;
+}
+
+}  // namespace clothfit

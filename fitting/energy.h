@@ -1,0 +1,42 @@
+// The white-furnace check of a fitted model (models/albedo.h): the largest
+// directional albedo a(wo), in any channel, over a dense set of directions
+// of the upper hemisphere (FurnaceDirections: the normal and rings from 15
+// to 89 degrees). A model conserves energy when it is at most 1.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "models/evaluate.h"
+
+namespace clothfit {
+
+struct EnergyCheck {
+  double max_albedo = 0.0;              // over directions and channels
+  glm::dvec3 direction{0.0, 0.0, 1.0};  // where (surface frame)
+};
+
+// A Lafortune texel: in closed form (LafortuneViewAlbedo) at
+// FurnaceDirections(12) and at the lookup table's views.
+EnergyCheck LafortuneEnergy(const LafortuneModel& m);
+
+// Any model by quadrature (36 rings) at FurnaceDirections(8); a Lafortune
+// model by LafortuneEnergy.
+EnergyCheck ModelEnergy(const ModelParams& p);
+
+// Lowers each stored view's T (per channel) to 1 / the bracket's albedo
+// at that view where T times it exceeds 1 (LafortuneViewAlbedo at the
+// stored views; `normal` the texel's, `views` the table's views in the
+// surface frame); returns how many views were lowered.
+int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
+                             const std::vector<glm::dvec3>& views,
+                             std::vector<glm::dvec3>* t);
+
+// Multiplies the albedo of every direction by s > 0: rho_d by s, each
+// lobe's C by s^(1/N) (its value by s).
+void ScaleLafortuneAlbedo(double s, LafortuneParams* p);
+
+// "directional albedo 1.23 (at theta 85, phi 90 degrees)".
+std::string DescribeEnergy(const EnergyCheck& e);
+
+}  // namespace clothfit
