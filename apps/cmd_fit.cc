@@ -10,6 +10,7 @@
 
 #include "apps/commands.h"
 #include "fitting/cloth_fit.h"
+#include "fitting/energy.h"
 #include "fitting/model_selection.h"
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
@@ -184,8 +185,10 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
 }
 
 int FinishFit(const CommandArgs& args, const ModelParams& fitted,
-              const FitReport& report, const std::vector<double>& truth,
+              const FitReport& fit_report, const std::vector<double>& truth,
               const FitExtras& extras) {
+  FitReport report = fit_report;
+  ReportModelEnergy(fitted, &report);
   return FinishFit(
       report, truth, args.Get("out"),
       [&](std::string fit_json) {

@@ -84,6 +84,13 @@ int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
   return lowered;
 }
 
+void ReportModelEnergy(const ModelParams& fitted, FitReport* report) {
+  if (report->max_albedo >= 0.0) return;
+  const EnergyCheck e = ModelEnergy(fitted);
+  report->max_albedo = e.max_albedo;
+  report->max_albedo_at = DescribeEnergy(e);
+}
+
 void ScaleLafortuneAlbedo(double s, LafortuneParams* p) {
   p->diffuse *= s;
   for (LafortuneLobe& lobe : p->lobes) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/fit_result.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
@@ -31,6 +32,12 @@ EnergyCheck ModelEnergy(const ModelParams& p);
 int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
                              const std::vector<glm::dvec3>& views,
                              std::vector<glm::dvec3>* t);
+
+// Records ModelEnergy of a fitted model in the report (max_albedo,
+// max_albedo_at) unless the fit did (a Lafortune texel). Thread and cloth
+// are reported, not scaled: the published microcylinder model exceeds 1 at
+// grazing views by itself (docs/fitting.md).
+void ReportModelEnergy(const ModelParams& fitted, FitReport* report);
 
 // Multiplies the albedo of every direction by s > 0: rho_d by s, each
 // lobe's C by s^(1/N) (its value by s).

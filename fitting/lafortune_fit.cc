@@ -34,11 +34,12 @@ using ChannelTerms = LafortuneSampleTerms;
 template <int kLobes>
 struct ChannelResidual {
   const std::vector<ChannelTerms> terms;
+  const double peak_cap;
 
   template <typename T>
   bool operator()(const T* y, T* residual) const {
     T x[1 + 4 * kLobes];
-    LobesFromBounded(y, kLobes, x);
+    LobesFromBounded(y, kLobes, peak_cap, x);
     for (size_t i = 0; i < terms.size(); ++i) {
       const ChannelTerms& s = terms[i];
       residual[i] = WeightedResidual(
@@ -47,11 +48,12 @@ struct ChannelResidual {
     return true;
   }
 
-  static ceres::CostFunction* Create(std::vector<ChannelTerms> terms) {
+  static ceres::CostFunction* Create(std::vector<ChannelTerms> terms,
+                                     double peak_cap) {
     const int n = static_cast<int>(terms.size());
     return new ceres::AutoDiffCostFunction<ChannelResidual, ceres::DYNAMIC,
                                            1 + 4 * kLobes>(
-        new ChannelResidual{std::move(terms)}, n);
+        new ChannelResidual{std::move(terms), peak_cap}, n);
   }
 };
 
@@ -70,17 +72,17 @@ std::vector<ChannelTerms> MakeChannelTerms(const TexelSamples& s,
 }
 
 // The lobe count is a template argument: the solver's inner loop unrolls.
-ceres::CostFunction* MakeChannelCost(int lobes,
-                                     std::vector<ChannelTerms> terms) {
+ceres::CostFunction* MakeChannelCost(int lobes, std::vector<ChannelTerms> terms,
+                                     double peak_cap) {
   switch (lobes) {
     case 0:
-      return ChannelResidual<0>::Create(std::move(terms));
+      return ChannelResidual<0>::Create(std::move(terms), peak_cap);
     case 1:
-      return ChannelResidual<1>::Create(std::move(terms));
+      return ChannelResidual<1>::Create(std::move(terms), peak_cap);
     case 2:
-      return ChannelResidual<2>::Create(std::move(terms));
+      return ChannelResidual<2>::Create(std::move(terms), peak_cap);
     default:
-      return ChannelResidual<3>::Create(std::move(terms));
+      return ChannelResidual<3>::Create(std::move(terms), peak_cap);
   }
 }
 
@@ -95,9 +97,9 @@ constexpr int kLaterPassIterations = 8;
 // them); returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
                  int channel, int lobes, const LafortuneFitOptions& fit,
-                 double* x) {
-  std::vector<double> y = LobesToBounded(x, lobes);
-  LobesFromBounded(y.data(), lobes, x);
+                 double peak_cap, double* x) {
+  std::vector<double> y = LobesToBounded(x, lobes, peak_cap);
+  LobesFromBounded(y.data(), lobes, peak_cap, x);
   // Ceres refuses (and logs) a start whose cost is not finite; such a start
   // (a lobe power overflowing) is left as it is and the caller sees the
   // non-finite cost.
@@ -110,8 +112,8 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   if (!std::isfinite(start_cost)) return 0;
   ceres::Problem problem;
   problem.AddResidualBlock(
-      MakeChannelCost(lobes, MakeChannelTerms(samples, lut, channel)), nullptr,
-      y.data());
+      MakeChannelCost(lobes, MakeChannelTerms(samples, lut, channel), peak_cap),
+      nullptr, y.data());
   SetBoundedLobeBounds(lobes, y.data(), &problem);
   ceres::Solver::Options options;
   SetCeresLinearSolver(fit.linear_solver, &options);
@@ -121,7 +123,7 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
-  LobesFromBounded(y.data(), lobes, x);
+  LobesFromBounded(y.data(), lobes, peak_cap, x);
   return static_cast<int>(summary.iterations.size());
 }
 
@@ -151,7 +153,7 @@ LafortuneParams PaperStart(int lobes, double diffuse, double c) {
 // Returns the solver's iterations.
 int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
              const LafortuneFitOptions& options, bool warm_channels,
-             LafortuneParams* p) {
+             double peak_cap, LafortuneParams* p) {
   int iterations = 0;
   const int lobes = static_cast<int>(p->lobes.size());
   std::vector<double> x(LafortuneChannelSize(lobes));
@@ -171,7 +173,8 @@ int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
     }
     std::vector<double> lut(t.size());
     for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
-    iterations += SolveChannel(samples, lut, c, lobes, options, x.data());
+    iterations +=
+        SolveChannel(samples, lut, c, lobes, options, peak_cap, x.data());
     LafortuneChannelFromArray(x.data(), c, p);
   }
   return iterations;
@@ -299,6 +302,8 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     d.diffuse = glm::max(0.7 * rho_d, glm::dvec3(0.0));
     starts.push_back(d);
   }
+  const double peak_cap =
+      LafortunePeakCap(samples.largest_row_value, samples.value);
   LafortuneParams best;
   double best_cost = HUGE_VAL;
   // The first pass (from a start far from the solution, most of the
@@ -316,12 +321,12 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     bool converged = true;
     if (joint) {
       const JointChannelResult r =
-          SolveJoint(first, own, options, kMaxT, &p, &start_t);
+          SolveJoint(first, own, options, kMaxT, peak_cap, &p, &start_t);
       out.report.iterations += r.iterations;
       converged = r.converged;
     } else {
       out.report.iterations +=
-          FitLobes(first, t, options, options.warm_channels, &p);
+          FitLobes(first, t, options, options.warm_channels, peak_cap, &p);
     }
     const double cost = Cost(samples, start_t, p);
     if (Finite(p) && cost < best_cost) {
@@ -349,10 +354,10 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
     const std::vector<glm::dvec3> before = t;
     JointChannelResult r = {0, true, true};
     if (&first != &samples) {
-      r = SolveJoint(samples, own, options, kMaxT, &best, &t);
+      r = SolveJoint(samples, own, options, kMaxT, peak_cap, &best, &t);
       out.report.iterations += r.iterations;
     }
-    if (r.usable) NormaliseLookupTable(own, &best, &t);
+    if (r.usable) NormaliseLookupTable(own, peak_cap, &best, &t);
     double change = 0.0;
     int counted = 0;
     for (size_t k = 0; k < n_views; ++k) {
@@ -402,7 +407,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
       later.max_iterations =
           std::min(options.max_iterations, kLaterPassIterations);
       LafortuneParams p = best;
-      out.report.iterations += FitLobes(samples, t, later, false, &p);
+      out.report.iterations += FitLobes(samples, t, later, false, peak_cap, &p);
       ++out.report.alternations;
       if (Finite(p)) best = p;
       if (out.report.lut_change < options.lut_threshold) {
@@ -441,7 +446,7 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   // quarter of the samples alone can be narrow and wrong between them.
   if (&first != &samples && out.report.alternations == 1) {
     LafortuneParams p = best;
-    out.report.iterations += FitLobes(samples, t, options, false, &p);
+    out.report.iterations += FitLobes(samples, t, options, false, peak_cap, &p);
     if (Finite(p)) best = p;
   }
   // Energy. At a stored view the albedo is T(v) times the bracket's

@@ -28,12 +28,12 @@ template <int kLobes>
 struct ViewResidual {
   const std::vector<SampleTerms> terms;
   const bool own;
-  const double fixed_t, max_t;
+  const double fixed_t, max_t, peak_cap;
 
   template <typename T>
   bool operator()(const T* y, T* residual) const {
     T x[1 + 4 * kLobes];
-    LobesFromBounded(y, kLobes, x);
+    LobesFromBounded(y, kLobes, peak_cap, x);
     for (size_t i = 0; i < terms.size(); ++i) {
       const SampleTerms& s = terms[i];
       residual[i] = LobeSum(x, kLobes, s.xx, s.yy, s.zz) * s.factor;
@@ -58,11 +58,12 @@ struct ViewResidual {
   }
 
   static ceres::CostFunction* Create(std::vector<SampleTerms> terms, bool own,
-                                     double fixed_t, double max_t) {
+                                     double fixed_t, double max_t,
+                                     double peak_cap) {
     const int n = static_cast<int>(terms.size());
     return new ceres::AutoDiffCostFunction<ViewResidual, ceres::DYNAMIC,
                                            1 + 4 * kLobes>(
-        new ViewResidual{std::move(terms), own, fixed_t, max_t}, n);
+        new ViewResidual{std::move(terms), own, fixed_t, max_t, peak_cap}, n);
   }
 
   // The factor of the bounded variables y for this view: what the
@@ -70,7 +71,7 @@ struct ViewResidual {
   double Factor(const double* y) const {
     if (!own) return fixed_t;
     double x[1 + 4 * kLobes];
-    LobesFromBounded(y, kLobes, x);
+    LobesFromBounded(y, kLobes, peak_cap, x);
     double fy = 0.0, ff = 0.0;
     for (size_t i = 0; i < terms.size(); ++i) {
       const double f =
@@ -89,22 +90,23 @@ struct ViewResidual {
 template <int kLobes>
 void AddViews(const std::vector<std::vector<SampleTerms>>& by_view,
               const std::vector<bool>& own, const std::vector<double>& lut,
-              double max_t, double* x, ceres::Problem* problem) {
+              double max_t, double peak_cap, double* x,
+              ceres::Problem* problem) {
   for (size_t k = 0; k < by_view.size(); ++k) {
     if (by_view[k].empty()) continue;
-    problem->AddResidualBlock(
-        ViewResidual<kLobes>::Create(by_view[k], own[k], lut[k], max_t),
-        nullptr, x);
+    problem->AddResidualBlock(ViewResidual<kLobes>::Create(
+                                  by_view[k], own[k], lut[k], max_t, peak_cap),
+                              nullptr, x);
   }
 }
 
 template <int kLobes>
 void Factors(const std::vector<std::vector<SampleTerms>>& by_view,
-             const std::vector<bool>& own, double max_t, const double* x,
-             std::vector<double>* lut) {
+             const std::vector<bool>& own, double max_t, double peak_cap,
+             const double* x, std::vector<double>* lut) {
   for (size_t k = 0; k < by_view.size(); ++k) {
     if (by_view[k].empty() || !own[k]) continue;
-    const ViewResidual<kLobes> r{by_view[k], true, 1.0, max_t};
+    const ViewResidual<kLobes> r{by_view[k], true, 1.0, max_t, peak_cap};
     (*lut)[k] = r.Factor(x);
   }
 }
@@ -115,12 +117,12 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
                                      const std::vector<bool>& own, int channel,
                                      int lobes,
                                      const LafortuneFitOptions& options,
-                                     double max_t, double* x,
+                                     double max_t, double peak_cap, double* x,
                                      std::vector<double>* lut) {
   JointChannelResult out;
   const size_t n_views = lut->size();
-  std::vector<double> y = LobesToBounded(x, lobes);
-  LobesFromBounded(y.data(), lobes, x);
+  std::vector<double> y = LobesToBounded(x, lobes, peak_cap);
+  LobesFromBounded(y.data(), lobes, peak_cap, x);
   std::vector<std::vector<SampleTerms>> by_view(n_views);
   double start_cost = 0.0;
   for (size_t i = 0; i < samples.size(); ++i) {
@@ -146,16 +148,16 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
   problem.AddParameterBlock(v, LafortuneChannelSize(lobes));
   switch (lobes) {
     case 0:
-      AddViews<0>(by_view, own, *lut, max_t, v, &problem);
+      AddViews<0>(by_view, own, *lut, max_t, peak_cap, v, &problem);
       break;
     case 1:
-      AddViews<1>(by_view, own, *lut, max_t, v, &problem);
+      AddViews<1>(by_view, own, *lut, max_t, peak_cap, v, &problem);
       break;
     case 2:
-      AddViews<2>(by_view, own, *lut, max_t, v, &problem);
+      AddViews<2>(by_view, own, *lut, max_t, peak_cap, v, &problem);
       break;
     default:
-      AddViews<3>(by_view, own, *lut, max_t, v, &problem);
+      AddViews<3>(by_view, own, *lut, max_t, peak_cap, v, &problem);
   }
   SetBoundedLobeBounds(lobes, v, &problem);
   ceres::Solver::Options solver;
@@ -171,19 +173,19 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.usable = summary.IsSolutionUsable() && std::isfinite(summary.final_cost);
   if (!out.usable) return out;
-  LobesFromBounded(v, lobes, x);
+  LobesFromBounded(v, lobes, peak_cap, x);
   switch (lobes) {  // the table of the solution
     case 0:
-      Factors<0>(by_view, own, max_t, v, lut);
+      Factors<0>(by_view, own, max_t, peak_cap, v, lut);
       break;
     case 1:
-      Factors<1>(by_view, own, max_t, v, lut);
+      Factors<1>(by_view, own, max_t, peak_cap, v, lut);
       break;
     case 2:
-      Factors<2>(by_view, own, max_t, v, lut);
+      Factors<2>(by_view, own, max_t, peak_cap, v, lut);
       break;
     default:
-      Factors<3>(by_view, own, max_t, v, lut);
+      Factors<3>(by_view, own, max_t, peak_cap, v, lut);
   }
   return out;
 }
@@ -206,7 +208,8 @@ void FollowOwnedViews(const std::vector<bool>& own,
 JointChannelResult SolveJoint(const TexelSamples& on,
                               const std::vector<bool>& own,
                               const LafortuneFitOptions& options, double max_t,
-                              LafortuneParams* p, std::vector<glm::dvec3>* t) {
+                              double peak_cap, LafortuneParams* p,
+                              std::vector<glm::dvec3>* t) {
   JointChannelResult out;
   out.usable = true;
   const int lobes = static_cast<int>(p->lobes.size());
@@ -221,8 +224,8 @@ JointChannelResult SolveJoint(const TexelSamples& on,
       LafortuneChannelToArray(*p, c, x.data());
       std::vector<double> lut(n_views);
       for (size_t k = 0; k < n_views; ++k) lut[k] = (*t)[k][c];
-      const JointChannelResult r =
-          SolveJointChannel(on, own, c, lobes, options, max_t, x.data(), &lut);
+      const JointChannelResult r = SolveJointChannel(
+          on, own, c, lobes, options, max_t, peak_cap, x.data(), &lut);
       out.iterations += r.iterations;
       out.usable = out.usable && r.usable;
       out.converged = out.converged && r.converged;
@@ -235,8 +238,8 @@ JointChannelResult SolveJoint(const TexelSamples& on,
   return out;
 }
 
-void NormaliseLookupTable(const std::vector<bool>& own, LafortuneParams* p,
-                          std::vector<glm::dvec3>* t) {
+void NormaliseLookupTable(const std::vector<bool>& own, double peak_cap,
+                          LafortuneParams* p, std::vector<glm::dvec3>* t) {
   for (int c = 0; c < 3; ++c) {
     double mean = 0.0;
     int owned = 0;
@@ -254,7 +257,7 @@ void NormaliseLookupTable(const std::vector<bool>& own, LafortuneParams* p,
       const double f = std::pow(mean, 1.0 / lobe.n[c]);
       for (glm::dvec3* field : {&lobe.cx, &lobe.cy, &lobe.cz}) (*field)[c] *= f;
     }
-    if (!LobesWithinReach(scaled) ||
+    if (!LobesWithinReach(scaled, peak_cap) ||
         scaled.diffuse[c] > kLafortuneDiffuse.fit_hi) {
       continue;
     }

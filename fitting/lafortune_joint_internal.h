@@ -31,14 +31,16 @@ struct JointChannelResult {
   bool usable = false;     // a finite solution
 };
 
-// Solves channel `channel` from x (in/out, the channel layout); lut (in/out,
-// T per view of the samples): views with own[v] get the projected factor
-// of the solution (in [0, max_t]), the others keep their T.
+// Solves channel `channel` from x (in/out, the channel layout; the lobes'
+// peaks at most peak_cap, fitting/lafortune_bounds_internal.h); lut
+// (in/out, T per view of the samples): views with own[v] get the
+// projected factor of the solution (in [0, max_t]), the others keep their
+// T.
 JointChannelResult SolveJointChannel(const TexelSamples& samples,
                                      const std::vector<bool>& own, int channel,
                                      int lobes,
                                      const LafortuneFitOptions& options,
-                                     double max_t, double* x,
+                                     double max_t, double peak_cap, double* x,
                                      std::vector<double>* lut);
 
 // The views without an entry of their own (!own[k]) take T interpolated
@@ -54,14 +56,15 @@ void FollowOwnedViews(const std::vector<bool>& own,
 JointChannelResult SolveJoint(const TexelSamples& on,
                               const std::vector<bool>& own,
                               const LafortuneFitOptions& options, double max_t,
-                              LafortuneParams* p, std::vector<glm::dvec3>* t);
+                              double peak_cap, LafortuneParams* p,
+                              std::vector<glm::dvec3>* t);
 
 // The gauge: T times f1 is unchanged when T is divided and f1 multiplied
 // by the same s (rho_d by s, each lobe's C by s^(1/N)). With s the mean T
 // of the owned views, per channel, the table's mean is 1; a channel whose
 // lobes would leave their bounds (LobesWithinReach, rho_d <= 1 / pi)
 // keeps its scale.
-void NormaliseLookupTable(const std::vector<bool>& own, LafortuneParams* p,
-                          std::vector<glm::dvec3>* t);
+void NormaliseLookupTable(const std::vector<bool>& own, double peak_cap,
+                          LafortuneParams* p, std::vector<glm::dvec3>* t);
 
 }  // namespace clothfit

@@ -1,5 +1,6 @@
 #include "fitting/lafortune_samples.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -83,6 +84,8 @@ TexelSamples CollectSamples(const MeasurementTable& table,
     s.weight[k] += w;
     sum_wy[k] += w * row.value * to_rho;
     s.value[k] += row.value * to_rho;  // plain sum, for zero weights
+    const glm::dvec3 rho = row.value * to_rho;
+    s.largest_row_value = std::max({s.largest_row_value, rho.x, rho.y, rho.z});
     s.count_rows.resize(s.l.size(), 0);
     ++s.count_rows[k];
     alpha_sum[view] += row.alpha;
@@ -165,6 +168,7 @@ TexelSamples Subsample(const TexelSamples& samples, int stride) {
   sub.normal = samples.normal;
   sub.views = samples.views;
   sub.view_alpha = samples.view_alpha;
+  sub.largest_row_value = samples.largest_row_value;
   for (size_t i = 0; i < samples.size(); ++i) {
     const uint64_t hash = (static_cast<uint64_t>(i) * 2654435761u) >> 7;
     if (hash % static_cast<uint64_t>(stride) != 0) continue;

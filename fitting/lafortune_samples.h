@@ -26,6 +26,9 @@ struct TexelSamples {
   std::vector<int> source_line;    // table line of each sample's first row
   std::vector<glm::dvec3> views;   // the distinct view directions
   std::vector<double> view_alpha;  // mean alpha of each view's samples
+  // The largest value of any merged row (rho, any channel), which merging
+  // into means would lower; 0 where the samples are the rows themselves.
+  double largest_row_value = 0.0;
   size_t size() const { return l.size(); }
 };
 

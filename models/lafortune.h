@@ -50,12 +50,15 @@ namespace clothfit {
 inline constexpr double kLafortuneMaxReach = 1.0693;
 
 // The fits' bound on |Cx|, |Cy|, |Cz| of a lobe with exponent n: the lobe's
-// peak |C|_inf^N is then at most (N + 2) / (2 pi) (the table's comment).
+// peak |C|_inf^N is then at most (N + 2) / (2 pi) (the table's comment),
+// and at most peak_cap when that is lower.
 template <typename T>
-T LafortuneLobeReach(const T& n) {
+T LafortuneLobeReach(const T& n, double peak_cap = kInfinity) {
   using std::exp;
   using std::log;
-  return exp(log((n + T(2.0)) / T(2.0 * kPi)) / n);
+  T peak = (n + T(2.0)) / T(2.0 * kPi);
+  if (peak > T(peak_cap)) peak = T(peak_cap);
+  return exp(log(peak) / n);
 }
 
 inline constexpr ParamInfo kLafortuneDiffuse = {

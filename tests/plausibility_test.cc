@@ -13,6 +13,7 @@
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
 #include "models/albedo.h"
+#include "models/presets.h"
 
 namespace clothfit {
 namespace {
@@ -90,15 +91,39 @@ TEST(LafortuneEnergy, BrightTexelIsScaledToAlbedoOneAndReported) {
   EXPECT_NEAR(LafortuneEnergy(m).max_albedo, 1.0, 1e-9);
 }
 
+// Thread and cloth fits report the white furnace of what they wrote: the
+// linen preset's largest albedo (at the normal) agrees with a fine
+// quadrature; its single thread, as Sadeghi et al.'s model has it,
+// exceeds 1 toward grazing views, which the report says rather than hides.
+TEST(ModelEnergy, ClothIsReportedAndTheThreadModelExceedsOneAtGrazing) {
+  ClothParams cloth;
+  ASSERT_TRUE(GetPreset("linen_plain", &cloth));
+  FitReport report;
+  ReportModelEnergy(cloth, &report);
+  const HemisphereQuadrature fine = MakeHemisphereQuadrature(120);
+  auto rho = [&](const glm::dvec3& wi, const glm::dvec3& wo) {
+    return Rho(cloth, wi, wo);
+  };
+  const glm::dvec3 at_normal =
+      QuadratureViewAlbedo(rho, glm::dvec3(0.0, 0.0, 1.0), fine);
+  EXPECT_NEAR(report.max_albedo,
+              std::max({at_normal.x, at_normal.y, at_normal.z}),
+              0.02 * report.max_albedo);
+  EXPECT_LT(report.max_albedo, 1.0);
+  EXPECT_NE(report.max_albedo_at.find("theta 0"), std::string::npos)
+      << report.max_albedo_at;
+  const ModelParams thread = cloth.threads[0].params;
+  EXPECT_GT(ModelEnergy(thread).max_albedo, 1.0);
+}
+
 // synth --gonio plain --texels 16 --directions 8, fit --mip: every texel of
 // every level is finite everywhere on the hemisphere (lights and views on
-// rings out to 89 degrees, beyond the measured 85) and within the bound the
-// lobes' parameterisation guarantees, T_max (rho_d + sum_k (N_k + 2) /
-// (2 pi)) (fitting/lafortune_bounds_internal.h), and every directional
-// albedo is <= 1. Before the bounds a texel reached 2.7e10 there. How many
-// texels exceed 50 x the data's largest value is printed: narrow lobes
-// (N = 200) at unmeasured directions near the normal still reach
-// (N + 2) / (2 pi) = 32 (docs/lafortune.md).
+// rings out to 89 degrees, beyond the measured 85), within the bound the
+// lobes' parameterisation guarantees, T_max (rho_d + sum_k min((N_k + 2) /
+// (2 pi), 10 x the texel's largest value))
+// (fitting/lafortune_bounds_internal.h), and at most 50 x the data's
+// largest value; every directional albedo is <= 1. Before the bounds a
+// texel reached 2.7e10 there.
 TEST(LafortunePlausibility, GonioMipMapIsBoundedAndConservesEnergy) {
   VirtualGonioOptions gonio;
   gonio.pattern = WeavePattern::kPlain;
@@ -114,7 +139,7 @@ TEST(LafortunePlausibility, GonioMipMapIsBoundedAndConservesEnergy) {
   const LafortuneMipResult fit = FitLafortuneMip(table, options);
   const std::vector<glm::dvec3> dirs =
       FurnaceDirections(16, {10, 20, 30, 40, 50, 60, 70, 75, 80, 85, 87, 89});
-  int texels = 0, above_50 = 0;
+  int texels = 0;
   double worst = 0.0;
   for (size_t l = 0; l < fit.levels.size(); ++l) {
     for (size_t i = 0; i < fit.levels[l].texels.size(); ++i) {
@@ -128,30 +153,30 @@ TEST(LafortunePlausibility, GonioMipMapIsBoundedAndConservesEnergy) {
         }
       }
       double t_max = 1.0, bound = 0.0;
+      const double cap = 10.0 * data_max;  // at least the texel's own cap
       for (const glm::dvec3& t : m.lut.color) {
         t_max = std::max({t_max, t.x, t.y, t.z});
       }
       for (int c = 0; c < 3; ++c) {
         double b = m.params.diffuse[c];
         for (const LafortuneLobe& lobe : m.params.lobes) {
-          b += (lobe.n[c] + 2.0) / (2.0 * kPi);
+          b += std::min((lobe.n[c] + 2.0) / (2.0 * kPi), cap);
         }
         bound = std::max(bound, b);
       }
       EXPECT_LE(peak, t_max * bound * (1.0 + 1e-9))
           << "level " << l << " texel " << i;
+      EXPECT_LE(peak, 50.0 * data_max) << "level " << l << " texel " << i;
       const EnergyCheck e = LafortuneEnergy(m);
       EXPECT_LE(e.max_albedo, 1.0 + 1e-9)
           << "level " << l << " texel " << i << ": " << DescribeEnergy(e);
-      above_50 += peak > 50.0 * data_max ? 1 : 0;
       worst = std::max(worst, peak / data_max);
       ++texels;
     }
   }
   EXPECT_EQ(texels, 256 + 64 + 16 + 4 + 1);
-  std::printf(
-      "%d of %d texels above 50 x the data maximum %.3g; worst %.3g x\n",
-      above_50, texels, data_max, worst);
+  std::printf("largest value %.3g x the data's largest, %.3g\n", worst,
+              data_max);
 }
 
 }  // namespace
