@@ -12,6 +12,7 @@
 #include "apps/commands.h"
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/lafortune_select.h"
 #include "io/atomic_file.h"
 #include "io/image_stack.h"
 #include "io/param_mipmap.h"
@@ -59,6 +60,11 @@ int RunFitLafortune(int argc, char** argv) {
   args.Option("tolerance", "REL",
               "per texel, the smallest K (0..3) whose relative rms error is "
               "at most REL");
+  args.Option("select", "heldout",
+              "heldout: choose the lobe count (0..3) and the lookup table "
+              "(on/off) by k-fold error over the table's lights "
+              "(a table without s,t columns)");
+  args.Option("folds", "K", "folds of --select heldout, 2 to 20", "5");
   args.Flag("mip", "also fit the mip levels (2x2 groups down to 1x1)");
   args.Flag("no-lut", "no lookup table (T = 1)");
   args.Flag("data-start",
@@ -149,6 +155,22 @@ int RunFitLafortune(int argc, char** argv) {
     if (!(options.tolerance > 0.0))
       args.Fail("option '--tolerance': must be > 0");
   }
+  const bool select = args.Has("select");
+  if (select) {
+    if (args.Get("select") != "heldout") {
+      args.Fail("option '--select': expected heldout, got '" +
+                args.Get("select") + "'");
+    }
+    for (const char* other : {"lobes", "no-lut", "tolerance", "init"}) {
+      if (args.Has(other)) {
+        args.Fail(std::string("--select heldout chooses the lobes and the "
+                              "lookup table: leave out --") +
+                  other);
+      }
+    }
+  }
+  const long folds = args.GetInt("folds");
+  if (folds < 2 || folds > 20) args.Fail("option '--folds': must be 2 to 20");
   MeasurementTable table;
   const std::string source = args.Get(args.Has("stack") ? "stack" : "data");
   if (args.Has("stack")) {
@@ -164,6 +186,19 @@ int RunFitLafortune(int argc, char** argv) {
           "a .json parameter file");
     }
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
+    if (select) {
+      const LafortuneSelection chosen =
+          SelectLafortuneHeldOut(table, options, static_cast<int>(folds));
+      if (chosen.report.chosen < 0) {
+        std::cerr << "error: --select heldout: " << chosen.report.reason
+                  << "; nothing written\n";
+        return 1;
+      }
+      FitExtras extras;
+      extras.text = SelectionReportText(chosen.report) + "\n";
+      extras.json.emplace_back("selection", SelectionReportJson(chosen.report));
+      return FinishFit(args, chosen.fit.params, chosen.fit.report, {}, extras);
+    }
     const LafortuneFitResult fit = FitLafortuneTable(table, options);
     WarnNotReflection(fit.report, "lafortune");
     if (options.fit.lookup_table &&
@@ -181,6 +216,11 @@ int RunFitLafortune(int argc, char** argv) {
     return FinishFit(args, fit.params, fit.report, {}, FitExtras());
   }
 
+  if (select) {
+    args.Fail(
+        "--select heldout: one model per table only (a table without s,t "
+        "columns)");
+  }
   if (!text_util::EndsWith(out_path, ".exr")) {
     args.Fail(
         "a table with s,t columns gives a model per texel: --out must "

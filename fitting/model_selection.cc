@@ -83,17 +83,31 @@ int Choose(SelectionReport* report) {
 
 std::string SelectionReportText(const SelectionReport& r) {
   std::ostringstream out;
-  out << "model selection (tolerance: relative rms <= " << r.tolerance << ")\n";
+  bool heldout = false;
+  for (const CandidateReport& c : r.candidates) {
+    heldout = heldout || c.heldout_relative_rms >= 0.0;
+  }
+  if (heldout) {
+    out << "model selection (held-out error)\n";
+  } else {
+    out << "model selection (tolerance: relative rms <= " << r.tolerance
+        << ")\n";
+  }
   char line[256];
-  std::snprintf(line, sizeof(line), "  %-34s %6s %8s %12s %12s\n", "candidate",
-                "free", "samples", "rel. rms", "BIC");
+  std::snprintf(line, sizeof(line), "  %-34s %6s %8s %12s %12s%s\n",
+                "candidate", "free", "samples", "rel. rms", "BIC",
+                heldout ? "     held-out" : "");
   out << line;
   for (size_t i = 0; i < r.candidates.size(); ++i) {
     const CandidateReport& c = r.candidates[i];
-    std::snprintf(line, sizeof(line), "%s %-34s %6d %8d %12.4g %12.6g%s\n",
+    char held[32] = "";
+    if (heldout) {
+      std::snprintf(held, sizeof(held), " %12.4g", c.heldout_relative_rms);
+    }
+    std::snprintf(line, sizeof(line), "%s %-34s %6d %8d %12.4g %12.6g%s%s\n",
                   static_cast<int>(i) == r.chosen ? "*" : " ",
                   c.description.c_str(), c.free_parameters, c.samples,
-                  c.relative_rms, c.bic,
+                  c.relative_rms, c.bic, held,
                   !c.usable           ? "  (failed)"
                   : c.meets_tolerance ? "  meets"
                                       : "");
@@ -116,6 +130,9 @@ std::string SelectionReportJson(const SelectionReport& r) {
     e["samples"] = c.samples;
     e["relative_rms"] = c.relative_rms;
     e["bic"] = c.bic;
+    if (c.heldout_relative_rms >= 0.0) {
+      e["heldout_relative_rms"] = c.heldout_relative_rms;
+    }
     e["usable"] = c.usable;
     e["meets_tolerance"] = c.meets_tolerance;
     list.push_back(e);

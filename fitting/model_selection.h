@@ -28,6 +28,9 @@ struct CandidateReport {
   // Bayesian information criterion, chi2 + k ln(n) with sigma given,
   // n ln(RSS / n) + k ln(n) otherwise; lower is better.
   double bic = 0.0;
+  // The pooled relative RMS on held-out rows (k-fold over lights,
+  // fitting/lafortune_select.h); < 0: not computed.
+  double heldout_relative_rms = -1.0;
   bool usable = false;
   bool meets_tolerance = false;
 };
