@@ -34,8 +34,9 @@ bool Reflection(const TableRow& row) {
   return row.wi.z > 0.0 && row.wo.z > 0.0;
 }
 
-// Sum of squared errors and of squared values of `model` over the rows
-// for which keep(i), in the table's quantity and channels.
+// Adds the squared errors and squared values of `model` over the
+// reflection rows of fold `only` (every fold: only < 0), in the table's
+// quantity and channels, and counts them in *n.
 void Errors(const LafortuneModel& model, const MeasurementTable& table,
             const std::vector<int>& fold, int only, double* se, double* ss,
             int* n) {
