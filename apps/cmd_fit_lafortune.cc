@@ -71,10 +71,11 @@ int RunFitLafortune(int argc, char** argv) {
             "also try a start scaled to the data and keep the better "
             "(slower; docs/lafortune.md)");
   args.Option("solve", "S",
-              "alternate (the paper's alternation of lobes and table) or "
-              "joint (both in one solve: the optimum, but T can grow where "
-              "the lobes do not reach; docs/lafortune.md)",
-              "alternate");
+              "joint (lobes and table in one solve, to the optimum; a texel "
+              "whose optimum is not plausible is fitted by the alternation "
+              "instead) or alternate (the paper's alternation of lobes and "
+              "table; docs/lafortune.md)",
+              "joint");
   args.Option("lut-threshold", "X",
               "stop alternating when T changes less than this (mean relative)",
               "0.1");
@@ -240,12 +241,13 @@ int RunFitLafortune(int argc, char** argv) {
         "  level %zu: %dx%d, %zu samples, mean relative rms %.4g (per-view "
         "colour %.4g), lobes 0/1/2/3: %d/%d/%d/%d, per fit %.1f "
         "alternations, %.0f solver iterations, %d at a search limit, "
-        "largest directional albedo %.3g, %d scaled to conserve energy\n",
+        "largest directional albedo %.3g, %d scaled to conserve energy, "
+        "%d by the alternation (joint optimum not plausible)\n",
         l, level.width, level.height, level.samples, level.mean_relative_rms,
         level.mean_view_relative_rms, level.lobe_counts[0],
         level.lobe_counts[1], level.lobe_counts[2], level.lobe_counts[3],
         level.mean_alternations, level.mean_iterations, level.at_search_limit,
-        level.max_albedo, level.energy_scaled);
+        level.max_albedo, level.energy_scaled, level.solve_fallback);
   }
   WriteParamMipmap(ToParamMipmap(result), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
@@ -253,9 +255,9 @@ int RunFitLafortune(int argc, char** argv) {
     // A texel whose lookup table still moved at the cap is usable; the map
     // is written and the count reported (docs/decisions.md).
     std::cerr << "warning: " << summary.not_converged << " of " << result.fits
-              << " texel fit(s) stopped at the alternation cap; the first at "
-              << summary.first_not_converged
-              << " (raise --alternations or --lut-threshold)\n";
+              << " texel fit(s) stopped at an iteration or alternation cap; "
+                 "the first at "
+              << summary.first_not_converged << "\n";
   }
   if (summary.at_search_limit > 0) {
     // The rule of the thread and cloth fits: written, but not converged.

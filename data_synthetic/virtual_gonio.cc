@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -73,6 +74,17 @@ void Validate(const VirtualGonioOptions& o) {
   };
   if (o.texels < 1) fail("texels must be >= 1");
   if (o.directions < 1) fail("directions must be >= 1");
+  // s^2 n^4 rows of about 180 bytes each are held in memory.
+  const double rows =
+      std::pow(double(o.texels), 2) * std::pow(double(o.directions), 4);
+  if (rows > kMaxVirtualGonioRows) {
+    char what[200];
+    std::snprintf(what, sizeof(what),
+                  "texels %d and directions %d make %.0f rows (texels^2 x "
+                  "directions^4), more than %.0f (about 6 GB in memory)",
+                  o.texels, o.directions, rows, kMaxVirtualGonioRows);
+    fail(what);
+  }
   if (o.supersample < 1) fail("supersample must be >= 1");
   if (o.grid < 16) fail("grid must be >= 16");
   if (o.threads < 0) fail("threads must be >= 0");

@@ -90,8 +90,10 @@ struct VirtualGonioOptions {
 // seed, supersample, thread_radius, gap, glossy, row_order.
 // Throws InputError for options out of range: texels, directions,
 // supersample < 1; grid < 16; threads < 0; thread_radius <= 0; gap outside
-// [0, 0.5); glossy < 0. Memory: the rows dominate (s^2 n^4 TableRows; the
-// paper's 32 x 32 texels, n = 8 make 4.2 M rows, about 0.5 GB).
+// [0, 0.5); glossy < 0; more than kMaxVirtualGonioRows rows. Memory: the
+// rows dominate (s^2 n^4 TableRows; the paper's 32 x 32 texels, n = 8
+// make 4.2 M rows, about 0.75 GB).
+inline constexpr double kMaxVirtualGonioRows = 33554432.0;  // 2^25
 MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options);
 
 // "plain" | "satin" | "knit"; false for an unknown name.

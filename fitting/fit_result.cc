@@ -125,6 +125,7 @@ std::string FitReportJson(const FitReport& r) {
     j["lut_views"] = r.lut_views;
     j["lut_views_fitted"] = r.lut_views_fitted;
     j["lut_views_at_energy_bound"] = r.lut_views_at_energy_bound;
+    if (r.solve_fallback) j["solve_fallback"] = "alternate";
   }
   if (r.max_albedo >= 0.0) {
     nlohmann::ordered_json energy;

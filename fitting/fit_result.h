@@ -104,6 +104,10 @@ struct FitReport {
   // Of those, the views whose T was lowered to the energy bound (T times
   // the lobes' albedo at the view = 1, fitting/energy.h).
   int lut_views_at_energy_bound = 0;
+  // A joint Lafortune solve whose optimum was not plausible (it had to be
+  // scaled to conserve energy), replaced by the paper's alternation
+  // (fitting/lafortune_fit.h).
+  bool solve_fallback = false;
   // Free entries on a bound that only limits the search (also where the
   // parameters are not listed: a texel of a map).
   int at_search_limit = 0;

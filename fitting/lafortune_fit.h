@@ -29,16 +29,16 @@ namespace clothfit {
 enum class LafortuneSolve { kJoint, kAlternate };
 
 struct LafortuneFitOptions {
-  // The paper's alternation by default. The joint solve reaches the
-  // optimum of representable data (relative RMS 2e-14 where the
-  // alternation stops at 0.027), and its lobes are bounded now
-  // (fitting/lafortune_bounds_internal.h), but where a view's samples are
-  // out of the lobes' reach its projected T grows (up to 1e3), and the
-  // table's interpolation carries that T to directions the lobes do reach:
-  // on 4 x 4 virtual-gonio texels 5 of 16 came out 8-370 times above
-  // energy conservation and had to be scaled down, where the alternation
-  // keeps them plausible (docs/lafortune.md).
-  LafortuneSolve solve = LafortuneSolve::kAlternate;
+  // The joint solve by default: it reaches the optimum of representable
+  // data (relative RMS 2e-11 where the alternation stops at 0.019). Where
+  // a view's samples are out of the lobes' reach its projected T grows,
+  // and the table's interpolation carries that T to directions the lobes
+  // do reach; a texel whose joint optimum so reflects more than it
+  // receives (it would be scaled, fitting/energy.h) is fitted again by the
+  // alternation, which keeps T near its start, and the less scaled of the
+  // two is kept (FitReport::solve_fallback; 20 of 1,024 level-0 texels of
+  // the paper's 32 x 32 virtual-gonio map, docs/lafortune.md).
+  LafortuneSolve solve = LafortuneSolve::kJoint;
   // The joint solve stops when an iteration lowers the cost by less than
   // this fraction (or after max_iterations).
   double joint_function_tolerance = 1e-5;
@@ -127,6 +127,9 @@ std::string LafortuneNonFiniteSample(const TexelSamples& s,
                                      const std::vector<glm::dvec3>& t,
                                      const LafortuneParams& p);
 
+// With the joint solve, a texel whose joint optimum had to be scaled to
+// conserve energy is fitted again by the alternation and the less scaled
+// result kept (report.solve_fallback, the termination says why).
 // Never throws for data problems: an empty texel, all-zero values or views
 // without signal give a usable zero/diffuse model or usable = false with a
 // message; nothing is NaN.

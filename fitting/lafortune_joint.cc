@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
 
 #include "fitting/ceres_linear_solver_internal.h"
 #include "fitting/lafortune_bounds_internal.h"
@@ -13,8 +15,23 @@
 namespace clothfit {
 namespace {
 
+// <f1, f1>_w of a view below which the lobes do not reach it (T = 1).
+constexpr double kNoReach = 1e-250;
+
 // factor: the foreshortening max(l_z, 0) alone (T is a parameter here).
 using SampleTerms = LafortuneSampleTerms;
+
+// The least-squares factor fy / ff of a view, in [0, max_t], computed
+// without dividing by a vanishing ff (whose reciprocal, in a Jet's
+// derivative, is not finite): a view the lobes hardly reach takes
+// max_t, one they do not reach at all 1.
+template <typename T>
+T ProjectedFactor(const T& fy, const T& ff, double max_t) {
+  if (!(ff > T(kNoReach))) return T(1.0);
+  if (!(fy > T(0.0))) return T(0.0);
+  if (!(fy < T(max_t) * ff)) return T(max_t);
+  return fy / ff;
+}
 
 // The residuals of one view's samples, T(v) f1(l, v) - y weighted
 // (fitting/residual_weight.h; eq. 3). For a view with an entry of its own
@@ -46,9 +63,7 @@ struct ViewResidual {
         fy += w * residual[i] * terms[i].measured;
         ff += w * residual[i] * residual[i];
       }
-      t = ff > T(0.0) ? fy / ff : T(1.0);
-      if (t < T(0.0)) t = T(0.0);
-      if (t > T(max_t)) t = T(max_t);
+      t = ProjectedFactor(fy, ff, max_t);
     }
     for (size_t i = 0; i < terms.size(); ++i) {
       residual[i] =
@@ -81,8 +96,7 @@ struct ViewResidual {
       fy += w * f * terms[i].measured;
       ff += w * f * f;
     }
-    const double t = ff > 0.0 ? fy / ff : 1.0;
-    return std::clamp(t, 0.0, max_t);
+    return ProjectedFactor(fy, ff, max_t);
   }
 };
 
@@ -264,6 +278,40 @@ void NormaliseLookupTable(const std::vector<bool>& own, double peak_cap,
     *p = scaled;
     for (glm::dvec3& v : *t) v[c] /= mean;
   }
+}
+
+LafortuneFitResult FitLafortune(const TexelSamples& samples,
+                                const LafortuneFitOptions& options) {
+  LafortuneFitResult joint = FitLafortuneOnce(samples, options);
+  const bool plausible =
+      joint.report.usable && !(joint.report.energy_scale < 1.0);
+  if (options.solve != LafortuneSolve::kJoint || plausible ||
+      options.lookup_table == false) {
+    return joint;
+  }
+  // The joint optimum is not plausible: its T grew where the lobes do not
+  // reach, and the table's interpolation carries it to directions they do
+  // (docs/lafortune.md). The paper's alternation, which keeps T near its
+  // start, from the same start; the less scaled of the two is kept.
+  LafortuneFitOptions alternate = options;
+  alternate.solve = LafortuneSolve::kAlternate;
+  LafortuneFitResult r = FitLafortuneOnce(samples, alternate);
+  r.report.iterations += joint.report.iterations;
+  if (!r.report.usable || (joint.report.usable &&
+                           r.report.energy_scale < joint.report.energy_scale)) {
+    joint.report.iterations = r.report.iterations;
+    return joint;
+  }
+  char why[120];
+  std::snprintf(why, sizeof(why),
+                "the joint solve's optimum reflected %.3g times what it "
+                "received; ",
+                joint.report.usable ? 1.0 / joint.report.energy_scale : 0.0);
+  r.report.termination =
+      (joint.report.usable ? why : "the joint solve failed; ") +
+      std::string("alternation: ") + r.report.termination;
+  r.report.solve_fallback = true;
+  return r;
 }
 
 }  // namespace clothfit

@@ -67,4 +67,11 @@ JointChannelResult SolveJoint(const TexelSamples& on,
 void NormaliseLookupTable(const std::vector<bool>& own, double peak_cap,
                           LafortuneParams* p, std::vector<glm::dvec3>* t);
 
+// One solve of FitLafortune with options.solve as given
+// (fitting/lafortune_fit.cc); FitLafortune (fitting/lafortune_joint.cc)
+// falls back from the joint solve to the alternation where the joint
+// optimum is not plausible.
+LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
+                                    const LafortuneFitOptions& options);
+
 }  // namespace clothfit

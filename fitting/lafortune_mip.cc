@@ -137,6 +137,7 @@ LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
         }
       }
       s.max_albedo = std::max(s.max_albedo, t.report.max_albedo);
+      s.solve_fallback += t.report.solve_fallback ? 1 : 0;
       if (t.report.usable && t.report.at_search_limit > 0) {
         ++s.at_search_limit;
         if (out.at_search_limit++ == 0) {
@@ -323,6 +324,7 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
     level["at_search_limit"] = l.at_search_limit;
     level["energy_scaled"] = l.energy_scaled;
     level["max_albedo"] = l.max_albedo;
+    level["solve_fallback"] = l.solve_fallback;
     per_level.push_back(level);
   }
   fit["levels"] = per_level;

@@ -95,6 +95,9 @@ struct LafortuneLevelSummary {
   // that scaling.
   int energy_scaled = 0;
   double max_albedo = 0.0;
+  // Texels whose joint solve fell back to the alternation
+  // (FitReport::solve_fallback).
+  int solve_fallback = 0;
 };
 struct LafortuneMipSummary {
   std::vector<LafortuneLevelSummary> levels;

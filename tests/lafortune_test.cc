@@ -238,7 +238,11 @@ TEST(LafortuneFit, WarmStartFromTheBestCandidateSavesIterations) {
   const LafortuneFitResult a = FitLafortune(samples, cold);
   const LafortuneFitResult b = FitLafortune(samples, warm);
   ASSERT_TRUE(b.report.usable);
-  EXPECT_LT(b.report.iterations, a.report.iterations / 2);
+  // From the solution each of the six channel solves (the first pass and
+  // the joint solve, three channels each) stops within 3 iterations
+  // (Ceres counts the start as one).
+  EXPECT_LT(b.report.iterations, a.report.iterations);
+  EXPECT_LE(b.report.iterations, 6 * 3);
   EXPECT_LE(b.report.relative_rms, 1e-9);
 }
 
@@ -253,7 +257,11 @@ TEST(LafortuneFit, GivenStartIsUsedWithItsLookupTableOnTheSameViews) {
   const LafortuneFitResult a = FitLafortune(samples, cold);
   const LafortuneFitResult b = FitLafortune(samples, given);
   ASSERT_TRUE(b.report.usable);
-  EXPECT_LT(b.report.iterations, a.report.iterations / 2);
+  // From the solution each of the six channel solves (the first pass and
+  // the joint solve, three channels each) stops within 3 iterations
+  // (Ceres counts the start as one).
+  EXPECT_LT(b.report.iterations, a.report.iterations);
+  EXPECT_LE(b.report.iterations, 6 * 3);
   EXPECT_LE(b.report.relative_rms, 1e-9);
   // Rounding of the solver's bounded variables (C = X reach(N)).
   EXPECT_LE(b.report.final_cost, 1e-16);
@@ -334,9 +342,9 @@ TEST(LafortuneFit, LookupTableHelpsWhenTheDataHaveViewDependentColour) {
 }
 
 // A table a 2-lobe model with a lookup table represents exactly (64 views
-// x 49 lights, T smooth over the views, noise-free): the joint solve
-// reaches its optimum (relative RMS <= 1e-6), where the paper's
-// alternation with its default threshold stops at 0.027 (after 2
+// x 49 lights, T smooth over the views, noise-free): the default joint
+// solve reaches its optimum (relative RMS <= 1e-6), where the paper's
+// alternation with its default threshold stops at 0.019 (after 2
 // alternations; it converges linearly).
 TEST(LafortuneFit, JointSolveReachesTheOptimumOfAnExactlyRepresentableTable) {
   const std::vector<glm::dvec3> views = Hemisphere(8);
@@ -348,8 +356,7 @@ TEST(LafortuneFit, JointSolveReachesTheOptimumOfAnExactlyRepresentableTable) {
         glm::dvec3(0.8 + 0.3 * v.z, 1.1 - 0.2 * v.x * v.x, 0.9 + 0.1 * v.y);
   }
   const TexelSamples samples = AllSamples(LafortuneTable(truth, lights, views));
-  LafortuneFitOptions joint, alternate;
-  joint.solve = LafortuneSolve::kJoint;
+  LafortuneFitOptions joint, alternate;  // the default: the joint solve
   alternate.solve = LafortuneSolve::kAlternate;
   const LafortuneFitResult a = FitLafortune(samples, joint);
   const LafortuneFitResult b = FitLafortune(samples, alternate);
@@ -359,6 +366,7 @@ TEST(LafortuneFit, JointSolveReachesTheOptimumOfAnExactlyRepresentableTable) {
       a.report.relative_rms, a.report.iterations, a.report.termination.c_str(),
       b.report.relative_rms, b.report.alternations);
   EXPECT_TRUE(a.report.converged) << a.report.termination;
+  EXPECT_FALSE(a.report.solve_fallback);
   EXPECT_LE(a.report.relative_rms, 1e-6);
   EXPECT_EQ(a.report.lut_views_fitted, 64);
   // The table is normalised: mean T = 1 per channel.

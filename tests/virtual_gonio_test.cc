@@ -290,6 +290,11 @@ TEST(VirtualGonioTest, RejectsBadOptions) {
   expect_error([](VirtualGonioOptions* o) { o->texels = 0; });
   expect_error([](VirtualGonioOptions* o) { o->directions = 0; });
   expect_error([](VirtualGonioOptions* o) { o->supersample = 0; });
+  // 8^2 x 64^4 = 1.07e9 rows would not fit in memory: refused up front.
+  expect_error([](VirtualGonioOptions* o) {
+    o->texels = 8;
+    o->directions = 64;
+  });
   expect_error([](VirtualGonioOptions* o) { o->grid = 8; });
   expect_error([](VirtualGonioOptions* o) { o->thread_radius = 0.0; });
   expect_error([](VirtualGonioOptions* o) { o->gap = -0.1; });
