@@ -285,20 +285,23 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   LafortuneFitResult joint = FitLafortuneOnce(samples, options);
   const bool plausible =
       joint.report.usable && !(joint.report.energy_scale < 1.0);
+  // Only where the joint solve ran: with a lookup table of fitted views
+  // and more than one pass (else both solves are the same lobe fit).
   if (options.solve != LafortuneSolve::kJoint || plausible ||
-      options.lookup_table == false) {
+      joint.report.lut_views_fitted == 0 || options.max_alternations <= 1) {
     return joint;
   }
   // The joint optimum is not plausible: its T grew where the lobes do not
   // reach, and the table's interpolation carries it to directions they do
   // (docs/lafortune.md). The paper's alternation, which keeps T near its
-  // start, from the same start; the less scaled of the two is kept.
+  // start, from the same start; it is kept when it is less scaled.
   LafortuneFitOptions alternate = options;
   alternate.solve = LafortuneSolve::kAlternate;
   LafortuneFitResult r = FitLafortuneOnce(samples, alternate);
   r.report.iterations += joint.report.iterations;
-  if (!r.report.usable || (joint.report.usable &&
-                           r.report.energy_scale < joint.report.energy_scale)) {
+  if (!r.report.usable ||
+      (joint.report.usable &&
+       !(r.report.energy_scale > joint.report.energy_scale))) {
     joint.report.iterations = r.report.iterations;
     return joint;
   }
