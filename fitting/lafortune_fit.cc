@@ -315,8 +315,7 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   // reaches the optimum of representable data in 4x fewer iterations
   // than as its own first pass from the paper's start, and fewer texels
   // need the alternation (docs/lafortune.md).
-  const bool joint = lut && options.solve == LafortuneSolve::kJoint &&
-                     options.max_alternations > 1;
+  const bool joint = JointSolveRuns(options, lut);
   for (LafortuneParams p : starts) {
     out.report.iterations +=
         FitLobes(first, t, options, options.warm_channels, peak_cap, &p);

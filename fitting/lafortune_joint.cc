@@ -285,10 +285,9 @@ LafortuneFitResult FitLafortune(const TexelSamples& samples,
   LafortuneFitResult joint = FitLafortuneOnce(samples, options);
   const bool plausible =
       joint.report.usable && !(joint.report.energy_scale < 1.0);
-  // Only where the joint solve ran: with a lookup table of fitted views
-  // and more than one pass (else both solves are the same lobe fit).
-  if (options.solve != LafortuneSolve::kJoint || plausible ||
-      joint.report.lut_views_fitted == 0 || options.max_alternations <= 1) {
+  // Only where the joint solve ran (a fit reports its fitted views).
+  if (plausible ||
+      !JointSolveRuns(options, joint.report.lut_views_fitted > 0)) {
     return joint;
   }
   // The joint optimum is not plausible: its T grew where the lobes do not

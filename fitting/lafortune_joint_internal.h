@@ -67,6 +67,15 @@ JointChannelResult SolveJoint(const TexelSamples& on,
 void NormaliseLookupTable(const std::vector<bool>& own, double peak_cap,
                           LafortuneParams* p, std::vector<glm::dvec3>* t);
 
+// Whether a fit with these options runs the joint solve: with a lookup
+// table of fitted views (has_lut_views) and more than one pass; otherwise
+// both solves are the same lobe fit.
+inline bool JointSolveRuns(const LafortuneFitOptions& options,
+                           bool has_lut_views) {
+  return has_lut_views && options.solve == LafortuneSolve::kJoint &&
+         options.max_alternations > 1;
+}
+
 // One solve of FitLafortune with options.solve as given
 // (fitting/lafortune_fit.cc); FitLafortune (fitting/lafortune_joint.cc)
 // falls back from the joint solve to the alternation where the joint
