@@ -173,8 +173,13 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
   write(FitReportJson(report));
   std::cout << "wrote " << out_path << "\n";
   if (!report.identifiability.empty()) {
+    // A fit without --fix (Lafortune) says in parentheses what to do.
+    const bool has_hint = report.identifiability.find('(') != std::string::npos;
     std::cerr << "warning: " << report.identifiability
-              << " (the data do not determine them; fix them with --fix)\n";
+              << (has_hint ? ""
+                           : " (the data do not determine them; fix them "
+                             "with --fix)")
+              << "\n";
   }
   if (!report.converged) {
     std::cerr << "error: the solver stopped without converging ("

@@ -201,6 +201,17 @@ bool Finite(const LafortuneParams& p) {
 
 }  // namespace
 
+std::vector<bool> LafortuneOwnedViews(const TexelSamples& samples,
+                                      int min_lut_samples) {
+  std::vector<int> view_samples(samples.views.size(), 0);
+  for (size_t i = 0; i < samples.size(); ++i) ++view_samples[samples.view[i]];
+  std::vector<bool> own(samples.views.size(), false);
+  for (size_t k = 0; k < own.size(); ++k) {
+    own[k] = view_samples[k] >= std::max(1, min_lut_samples);
+  }
+  return own;
+}
+
 LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
                                     const LafortuneFitOptions& options) {
   LafortuneFitResult out;
@@ -239,14 +250,9 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   }
   // The views with enough samples for an entry of their own; the others
   // follow them by the table's interpolation.
-  std::vector<int> view_samples(n_views, 0);
-  for (size_t i = 0; i < samples.size(); ++i) ++view_samples[samples.view[i]];
-  std::vector<bool> own(n_views, false);
-  int owned = 0;
-  for (size_t k = 0; k < n_views; ++k) {
-    own[k] = view_samples[k] >= std::max(1, options.min_lut_samples);
-    owned += own[k] ? 1 : 0;
-  }
+  const std::vector<bool> own =
+      LafortuneOwnedViews(samples, options.min_lut_samples);
+  const int owned = static_cast<int>(std::count(own.begin(), own.end(), true));
   // Without a view to fit, or without signal, the table is T = 1: the fit
   // without one.
   bool signal = false;

@@ -91,6 +91,11 @@ struct LafortuneFitOptions {
   const LafortuneModel* start = nullptr;
 };
 
+// The views of `samples` that get a lookup-table entry of their own: those
+// with at least max(1, min_lut_samples) samples (LafortuneFitOptions).
+std::vector<bool> LafortuneOwnedViews(const TexelSamples& samples,
+                                      int min_lut_samples);
+
 // The fitted model (lobes, lookup table, normal) and its report: usable,
 // converged (the alternation stopped because T changed less than
 // lut_threshold, or there is no lookup table; not at the
@@ -98,9 +103,9 @@ struct LafortuneFitOptions {
 // at_search_limit and the first of which the message names), termination (in
 // words), iterations (all passes), alternations, lut_change (last pass),
 // final_cost (1/2 sum of weighted squared residuals as rho, as Ceres'), rms and
-// relative_rms (of the samples as rho), residuals and rows. No standard
-// deviations: the scale between T and the lobes is not identifiable
-// (docs/decisions.md).
+// relative_rms (of the samples as rho), residuals and rows. Standard
+// deviations are a table fit's (FitLafortuneTable,
+// fitting/lafortune_covariance.h), not every texel's.
 using LafortuneFitResult = FitResult<LafortuneModel>;
 
 // The lobe entries of `p` that lie on a bound that only limits the search

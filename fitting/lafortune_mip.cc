@@ -9,6 +9,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "fitting/lafortune_covariance.h"
 #include "io/input_error.h"
 #include "models/mip_levels.h"
 
@@ -101,6 +102,18 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   const Weighting weighting = LafortuneWeighting(table, options.noise);
   LafortuneFitResult fit = FitTexelRows(table, weighting, views, rows, options);
   fit.report.parameters = LafortuneParameterReports(fit.params.params);
+  if (fit.report.usable) {
+    // The lobes' standard deviations at the table's gauge, with T free at
+    // the views the fit gave an entry of their own.
+    const TexelSamples samples =
+        CollectSamples(table, weighting, views, rows, nullptr);
+    std::vector<bool> own(samples.views.size(), false);
+    if (fit.report.lut_views_fitted > 0) {
+      own = LafortuneOwnedViews(samples, options.fit.min_lut_samples);
+    }
+    ReportLafortuneStddev(samples, fit.params, own, weighting.LevelKnown(),
+                          &fit.report);
+  }
   // The cost is that of the table's values (sigma scales with the value's
   // conversion to rho, lafortune_samples.h), over the samples merged per
   // light and view; rms and relative_rms are of the rows as rho. The level

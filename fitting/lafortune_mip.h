@@ -67,9 +67,10 @@ LafortuneFitResult FitTexelRows(const MeasurementTable& table,
 // One model for a whole table (its s,t columns, if any, ignored): the fit
 // of every row as FitTexelRows, the rows that are not reflection left out
 // and counted in report.rows_not_used (InputError naming the table when
-// none is left), and the model's values in report.parameters (without
-// standard deviations: the scale between T and the lobes is not
-// identifiable).
+// none is left), and the model's values in report.parameters with their
+// standard deviations at the lookup table's gauge
+// (fitting/lafortune_covariance.h), or report.identifiability saying why
+// there are none.
 LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
                                      const LafortuneMipOptions& options);
 

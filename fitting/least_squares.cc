@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "fitting/ceres_linear_solver_internal.h"
+#include "fitting/covariance_internal.h"
 #include "io/input_error.h"
 
 namespace clothfit {
@@ -75,19 +76,9 @@ void Build(const LeastSquaresProblem& lsq, const SolverOptions& options,
   }
 }
 
-// Standard deviations from the Jacobian J of the free parameters at the
-// solution. Columns are scaled to unit norm first (D = diag |J_c|), so that
-// units do not decide what counts as rank-deficient: albedo (~0.01) and
-// gamma_v_deg (~60) differ by four orders of magnitude, enough for
-// ceres::Covariance, which tests the condition of the unscaled J^T J, to
-// call a well-determined problem singular. With J D^-1 = U S V^T,
-//   Cov = D^-1 V S^-2 V^T D^-1 * s2,
-// s2 = 1 when the data give sigma, else the residual variance. A singular
-// value below kMinSingularRatio * s_max means the data cannot determine the
-// combination of parameters in its right singular vector: those parameters
-// are named instead.
-constexpr double kMinSingularRatio = 1e-7;
-
+// Standard deviations from the Jacobian of the free parameters at the
+// solution (fitting/covariance_internal.h); the parameters the data cannot
+// determine are named instead.
 void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
             BuiltProblem* built, FitReport* report) {
   ceres::Problem::EvaluateOptions eval;
@@ -126,73 +117,23 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
         j(r, crs.cols[k]) = crs.values[k];
       }
     }
-    std::vector<std::string> involved;
     if (j.cols() != n) {
       report->identifiability = "not identifiable: internal column mismatch";
     } else {
-      Eigen::VectorXd norms = j.colwise().norm();
+      const Eigen::Map<const Eigen::VectorXd> r(residuals.data(),
+                                                residuals.size());
+      const ColumnCovariance cov = CovarianceOfColumns(
+          j, r, lsq.sigma_known, report->final_cost, report->residuals);
       for (int c = 0; c < n; ++c) {
-        if (!(norms[c] > 0.0)) {
-          involved.push_back(lsq.specs[free_index[c]].name);
-          norms[c] = 1.0;
-        }
+        stddev[free_index[c]] = cov.stddev[c];
+        sandwich[free_index[c]] = cov.sandwich[c];
       }
-      const Eigen::MatrixXd scaled = j * norms.cwiseInverse().asDiagonal();
-      Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-          scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
-      const Eigen::VectorXd sv = svd.singularValues();
-      const Eigen::MatrixXd& v = svd.matrixV();
-      const double s_max = sv.size() > 0 ? sv[0] : 0.0;
-      for (int k = 0; k < sv.size(); ++k) {
-        if (sv[k] > kMinSingularRatio * s_max) continue;
-        for (int c = 0; c < n; ++c) {
-          const std::string& name = lsq.specs[free_index[c]].name;
-          if (std::abs(v(c, k)) > 0.2 &&
-              std::find(involved.begin(), involved.end(), name) ==
-                  involved.end()) {
-            involved.push_back(name);
-          }
-        }
-      }
-      if (sv.size() < n) {  // fewer residuals than free parameters
-        for (int c = 0; c < n; ++c) {
-          const std::string& name = lsq.specs[free_index[c]].name;
-          if (std::find(involved.begin(), involved.end(), name) ==
-              involved.end()) {
-            involved.push_back(name);
-          }
-        }
-      }
-      const int dof = report->residuals - n;
-      if (involved.empty()) {
-        const double s2 =
-            lsq.sigma_known || dof <= 0 ? 1.0 : 2.0 * report->final_cost / dof;
-        const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
-        for (int c = 0; c < n; ++c) {
-          const double var = w.row(c).squaredNorm() / (norms[c] * norms[c]);
-          stddev[free_index[c]] = std::sqrt(var * s2);
-        }
-        // The sandwich (White's heteroscedasticity-consistent estimate,
-        // HC1): (J^T J)^-1 J^T diag(r^2) J (J^T J)^-1 n / (n - p), valid
-        // whatever the noise level and its variation across rows. With
-        // J D^-1 = U S V^T it is D^-1 A A^T D^-1, A = V S^-1 U^T diag(r).
-        if (!lsq.sigma_known && dof > 0 &&
-            static_cast<int>(residuals.size()) == j.rows()) {
-          const Eigen::Map<const Eigen::VectorXd> r(residuals.data(),
-                                                    residuals.size());
-          const Eigen::MatrixXd a =
-              w * (svd.matrixU().transpose() * r.asDiagonal());
-          const double hc1 =
-              static_cast<double>(report->residuals) / static_cast<double>(dof);
-          for (int c = 0; c < n; ++c) {
-            sandwich[free_index[c]] =
-                std::sqrt(a.row(c).squaredNorm() * hc1) / norms[c];
-          }
-        }
-      } else {
+      if (!cov.not_identifiable.empty()) {
         report->identifiability = "not identifiable:";
-        for (size_t k = 0; k < involved.size(); ++k) {
-          report->identifiability += (k ? ", " : " ") + involved[k];
+        for (size_t k = 0; k < cov.not_identifiable.size(); ++k) {
+          report->identifiability +=
+              (k ? ", " : " ") +
+              lsq.specs[free_index[cov.not_identifiable[k]]].name;
         }
       }
     }

@@ -376,6 +376,60 @@ TEST(LafortuneFit, JointSolveReachesTheOptimumOfAnExactlyRepresentableTable) {
   EXPECT_GT(b.report.relative_rms, 100.0 * a.report.relative_rms);
 }
 
+// A table fit reports a standard deviation for every diffuse and lobe
+// entry (their coverage: tests/uncertainty_coverage_test.cc), and none,
+// saying why, where its model is not the least-squares solution or the data
+// do not determine an entry.
+TEST(LafortuneFit, TableFitReportsStandardDeviationsOrSaysWhyNot) {
+  const std::vector<glm::dvec3> views = Hemisphere(4);
+  const std::vector<glm::dvec3> lights = Hemisphere(5, 0.37);
+  LafortuneModel truth = TruthModel(views);
+  truth.params.lobes.resize(1);
+  MeasurementTable table = LafortuneTable(truth, lights, views);
+  for (size_t i = 0; i < table.rows.size(); ++i) {  // a little noise
+    table.rows[i].value *= 1.0 + 0.01 * std::sin(7.3 * i);
+  }
+  LafortuneMipOptions one;
+  one.fit.lobes = 1;
+  const LafortuneFitResult fit = FitLafortuneTable(table, one);
+  ASSERT_TRUE(fit.report.converged) << fit.report.termination;
+  EXPECT_TRUE(fit.report.identifiability.empty()) << fit.report.identifiability;
+  ASSERT_EQ(fit.report.parameters.size(), 15u);
+  for (const ParameterReport& p : fit.report.parameters) {
+    EXPECT_GT(p.stddev, 0.0) << p.name;
+    EXPECT_GT(p.stddev_sandwich, 0.0) << p.name;  // the level is estimated
+    EXPECT_LT(p.stddev, 0.1 * std::max(1.0, std::abs(p.value))) << p.name;
+  }
+  // A second lobe the data do not need has nothing to determine it.
+  LafortuneMipOptions two;
+  two.fit.lobes = 2;
+  const LafortuneFitResult extra = FitLafortuneTable(table, two);
+  ASSERT_TRUE(extra.report.usable);
+  if (extra.report.identifiability.empty()) {
+    // Or it took part of the work: then every entry has a sigma.
+    for (const ParameterReport& p : extra.report.parameters) {
+      EXPECT_GT(p.stddev, 0.0) << p.name;
+    }
+  } else {
+    EXPECT_NE(extra.report.identifiability.find("lobes[1]"), std::string::npos)
+        << extra.report.identifiability;
+    for (const ParameterReport& p : extra.report.parameters) {
+      EXPECT_LT(p.stddev, 0.0) << p.name;
+    }
+  }
+  // Data 30 times brighter than a physical surface: the model is lowered
+  // to conserve energy, which no covariance describes.
+  for (TableRow& row : table.rows) row.value *= 30.0;
+  const LafortuneFitResult bright = FitLafortuneTable(table, one);
+  ASSERT_TRUE(bright.report.usable);
+  EXPECT_NE(bright.report.identifiability.find("conserve energy"),
+            std::string::npos)
+      << bright.report.identifiability;
+  for (const ParameterReport& p : bright.report.parameters) {
+    EXPECT_LT(p.stddev, 0.0) << p.name;
+  }
+}
+
 TEST(LafortuneFit, EmptyAndDegenerateTexelsGiveFiniteResults) {
   LafortuneFitOptions options;
   // No samples at all.

@@ -7,6 +7,8 @@
 // sandwich estimate (`stddev_sandwich`). The same thread fits weighted as
 // 0.3 did (every residual alike, a homoscedastic covariance) are checked
 // to be over-confident, which is why relative noise is the default.
+// Lafortune table fits, with and without a lookup table, are checked the
+// same way at the table's gauge (fitting/lafortune_covariance.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,6 +24,7 @@
 #include "data_synthetic/synthetic_table.h"
 #include "fitting/cloth_fit.h"
 #include "fitting/holes_fit.h"
+#include "fitting/lafortune_mip.h"
 #include "fitting/slab_fit.h"
 #include "fitting/thread_fit.h"
 #include "holes/hole_texture.h"
@@ -37,6 +40,7 @@ namespace {
 constexpr int kThreadTables = 100;
 constexpr int kClothTables = 60;
 constexpr int kCheapTables = 300;
+constexpr int kLafortuneTables = 200;
 constexpr double kNoise = 0.01;  // 1 % multiplicative
 constexpr uint64_t kSeed = 16001;
 
@@ -231,6 +235,89 @@ TEST(UncertaintyCoverage, HolesSigmasAreHonestWithoutASigmaColumn) {
     c.Add(FitHoles(table, tile, HolesFitOptions()).report, FlatTruth(truth));
   }
   ExpectHonest(c, "holes");
+}
+
+// A one-lobe texel (diffuse and an anisotropic specular lobe) with a
+// smooth per-view colour, or none; every view sees 25 lights, so each gets
+// a lookup-table entry of its own.
+LafortuneModel LafortuneTruth(const std::vector<glm::dvec3>& views, bool lut) {
+  LafortuneModel m;
+  m.params.diffuse = {0.06, 0.05, 0.04};
+  LafortuneLobe a;
+  a.cx = {-0.9, -0.8, -0.7};
+  a.cy = {-0.8, -0.8, -0.9};
+  a.cz = {0.9, 0.95, 1.0};
+  a.n = {8, 12, 15};
+  m.params.lobes = {a};
+  for (const glm::dvec3& v : views) {
+    m.lut.views.push_back(v);
+    m.lut.color.push_back(lut ? glm::dvec3(0.8 + 0.3 * v.z,
+                                           1.1 - 0.2 * v.x * v.x,
+                                           0.9 + 0.1 * v.y)
+                              : glm::dvec3(1.0));
+    m.lut.alpha.push_back(1.0);
+  }
+  return m;
+}
+
+// The truth's entries at the gauge of a fit: the fitted table's mean is s
+// times the true one per channel, so its lobes are the truth's with rho_d
+// / s and C s^(-1/N) (the same model).
+std::map<std::string, double> LafortuneTruthAtGauge(const LafortuneModel& truth,
+                                                    const LafortuneModel& fit) {
+  std::map<std::string, double> out;
+  for (int c = 0; c < 3; ++c) {
+    double mean_fit = 0.0, mean_true = 0.0;
+    for (size_t k = 0; k < truth.lut.color.size(); ++k) {
+      mean_fit += fit.lut.color[k][c];
+      mean_true += truth.lut.color[k][c];
+    }
+    const double s = mean_fit / mean_true;
+    const std::string ch = ChannelSuffix(c);
+    out["diffuse" + ch] = truth.params.diffuse[c] / s;
+    const LafortuneLobe& a = truth.params.lobes[0];
+    const double f = std::pow(s, -1.0 / a.n[c]);
+    out["lobes[0].Cx" + ch] = a.cx[c] * f;
+    out["lobes[0].Cy" + ch] = a.cy[c] * f;
+    out["lobes[0].Cz" + ch] = a.cz[c] * f;
+    out["lobes[0].N" + ch] = a.n[c];
+  }
+  return out;
+}
+
+// Tables with Gaussian noise of sigma 0.005 on the value (rho) and no sigma
+// column: the Lafortune default weighs every row alike and estimates the
+// level.
+Coverage LafortuneCoverage(bool lut) {
+  const std::vector<glm::dvec3> views = testing_util::Hemisphere(4);
+  const std::vector<glm::dvec3> lights = testing_util::Hemisphere(5, 0.37);
+  const LafortuneModel truth = LafortuneTruth(views, lut);
+  Coverage c;
+  for (int k = 0; k < kLafortuneTables; ++k) {
+    MeasurementTable table = testing_util::LafortuneTable(truth, lights, views);
+    Random random(kSeed + 4000 + k);
+    for (TableRow& row : table.rows) {
+      for (int ch = 0; ch < 3; ++ch) row.value[ch] += 0.005 * random.Normal();
+    }
+    LafortuneMipOptions options;
+    options.fit.lobes = 1;
+    options.fit.lookup_table = lut;
+    const LafortuneFitResult fit = FitLafortuneTable(table, options);
+    EXPECT_TRUE(fit.report.converged) << fit.report.termination;
+    EXPECT_TRUE(fit.report.identifiability.empty())
+        << fit.report.identifiability;
+    EXPECT_EQ(fit.report.lut_views_fitted, lut ? 16 : 0);
+    c.Add(fit.report, LafortuneTruthAtGauge(truth, fit.params));
+  }
+  return c;
+}
+
+TEST(UncertaintyCoverage, LafortuneSigmasAreHonestWithoutALookupTable) {
+  ExpectHonest(LafortuneCoverage(false), "lafortune, no lookup table");
+}
+
+TEST(UncertaintyCoverage, LafortuneSigmasAreHonestAtTheLookupTablesGauge) {
+  ExpectHonest(LafortuneCoverage(true), "lafortune with lookup table");
 }
 
 }  // namespace

@@ -1,0 +1,77 @@
+#include <algorithm>
+#include <cmath>
+
+#include "fitting/covariance_internal.h"
+
+namespace clothfit {
+
+ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
+                                     const Eigen::VectorXd& r, bool sigma_known,
+                                     double cost, int residuals) {
+  const int n = static_cast<int>(j.cols());
+  ColumnCovariance out;
+  out.stddev.assign(n, -1.0);
+  out.sandwich.assign(n, -1.0);
+  if (n == 0) return out;
+  auto flag = [&](int c) {
+    if (std::find(out.not_identifiable.begin(), out.not_identifiable.end(),
+                  c) == out.not_identifiable.end()) {
+      out.not_identifiable.push_back(c);
+    }
+  };
+  Eigen::VectorXd norms = j.colwise().norm();
+  for (int c = 0; c < n; ++c) {
+    if (!(norms[c] > 0.0)) {
+      flag(c);
+      norms[c] = 1.0;
+    }
+  }
+  const Eigen::MatrixXd scaled = j * norms.cwiseInverse().asDiagonal();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+      scaled, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::MatrixXd& v = svd.matrixV();
+  const double s_max = sv.size() > 0 ? sv[0] : 0.0;
+  for (int k = 0; k < sv.size(); ++k) {
+    if (sv[k] > kMinSingularRatio * s_max) continue;
+    for (int c = 0; c < n; ++c) {
+      if (std::abs(v(c, k)) > 0.2) flag(c);
+    }
+  }
+  if (sv.size() < n) {  // fewer residuals than free parameters
+    for (int c = 0; c < n; ++c) flag(c);
+  }
+  if (!out.not_identifiable.empty()) {
+    std::sort(out.not_identifiable.begin(), out.not_identifiable.end());
+    return out;
+  }
+  const int dof = residuals - n;
+  const bool has_r = r.size() == j.rows();
+  const double s2 = sigma_known || dof <= 0 ? 1.0 : 2.0 * cost / dof;
+  const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
+  for (int c = 0; c < n; ++c) {
+    const double var = w.row(c).squaredNorm() / (norms[c] * norms[c]);
+    out.stddev[c] = std::sqrt(var * s2);
+  }
+  // With J D^-1 = U S V^T the sandwich is D^-1 A A^T D^-1,
+  // A = V S^-1 U^T diag(e), e_i = r_i / (1 - h_i) with the leverage h_i =
+  // |U_i|^2 (HC3, MacKinnon and White 1985): a residual of a row that
+  // pulls the fit toward itself is smaller than its noise, most so where
+  // few rows decide a parameter (a narrow lobe's peak), which HC1's
+  // uniform n / (n - p) leaves too confident.
+  if (!sigma_known && dof > 0 && has_r) {
+    const Eigen::MatrixXd& u = svd.matrixU();
+    Eigen::VectorXd e(r.size());
+    for (int i = 0; i < r.size(); ++i) {
+      const double h = std::min(u.row(i).squaredNorm(), 1.0 - 1e-12);
+      e[i] = r[i] / (1.0 - h);
+    }
+    const Eigen::MatrixXd a = w * (u.transpose() * e.asDiagonal());
+    for (int c = 0; c < n; ++c) {
+      out.sandwich[c] = std::sqrt(a.row(c).squaredNorm()) / norms[c];
+    }
+  }
+  return out;
+}
+
+}  // namespace clothfit

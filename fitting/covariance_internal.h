@@ -1,0 +1,43 @@
+// Standard deviations from the Jacobian of a least-squares fit at its
+// solution, shared by the fits (least_squares.cc, lafortune_covariance.cc).
+// Eigen stays inside fitting/. For fitting/*.cc only.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace clothfit {
+
+// What a Jacobian's columns come to: per column, its standard deviation
+// and (when asked for) the sandwich estimate, -1 where not available; the
+// columns the data cannot determine (then no column has a standard
+// deviation).
+struct ColumnCovariance {
+  std::vector<double> stddev, sandwich;
+  std::vector<int> not_identifiable;
+};
+
+// J: residuals x free parameters, of the weighted residuals r (the
+// solution's). Columns are scaled to unit norm first (D = diag |J_c|), so
+// that units do not decide what counts as rank-deficient: albedo (~0.01)
+// and gamma_v_deg (~60) differ by four orders of magnitude, enough for
+// ceres::Covariance, which tests the condition of the unscaled J^T J, to
+// call a well-determined problem singular. With J D^-1 = U S V^T,
+//   Cov = D^-1 V S^-2 V^T D^-1 * s2,
+// s2 = 1 when sigma is known (sigma_known), else the residual variance
+// 2 cost / dof, dof = residuals - columns (`residuals` may count more than
+// J's rows: merged samples stand for their rows; cost = |r|^2 / 2 without
+// a robust loss). A
+// singular value below kMinSingularRatio * s_max means the data cannot
+// determine the combination of parameters in its right singular vector:
+// its columns (|v| > 0.2) are not identifiable, as is a zero column and
+// every column when J has fewer rows than columns. With sigma unknown the
+// sandwich (White's heteroscedasticity-consistent estimate, HC1) is given
+// too: (J^T J)^-1 J^T diag(r^2) J (J^T J)^-1 n / (n - p), valid whatever
+// the noise level and its variation across rows.
+inline constexpr double kMinSingularRatio = 1e-7;
+ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
+                                     const Eigen::VectorXd& r, bool sigma_known,
+                                     double cost, int residuals);
+
+}  // namespace clothfit
