@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "fitting/lafortune_fit.h"
+#include "fitting/lafortune_level_select.h"
 #include "fitting/lafortune_mip.h"
 #include "fitting/lafortune_select.h"
 #include "io/atomic_file.h"
@@ -61,9 +62,10 @@ int RunFitLafortune(int argc, char** argv) {
               "per texel, the smallest K (0..3) whose relative rms error is "
               "at most REL");
   args.Option("select", "heldout",
-              "heldout: choose the lobe count (0..3) and the lookup table "
-              "(on/off) by k-fold error over the table's lights "
-              "(a table without s,t columns)");
+              "heldout: choose by k-fold error over the table's lights the "
+              "lobe count (0..3) and the lookup table (on/off) of one "
+              "model, or with s,t columns and --mip the mip level a map "
+              "supports");
   args.Option("folds", "K", "folds of --select heldout, 2 to 20", "5");
   args.Flag("mip", "also fit the mip levels (2x2 groups down to 1x1)");
   args.Flag("no-lut", "no lookup table (T = 1)");
@@ -162,13 +164,6 @@ int RunFitLafortune(int argc, char** argv) {
       args.Fail("option '--select': expected heldout, got '" +
                 args.Get("select") + "'");
     }
-    for (const char* other : {"lobes", "no-lut", "tolerance", "init"}) {
-      if (args.Has(other)) {
-        args.Fail(std::string("--select heldout chooses the lobes and the "
-                              "lookup table: leave out --") +
-                  other);
-      }
-    }
   }
   const long folds = args.GetInt("folds");
   if (folds < 2 || folds > 20) args.Fail("option '--folds': must be 2 to 20");
@@ -188,6 +183,13 @@ int RunFitLafortune(int argc, char** argv) {
     }
     if (options.mip) args.Fail("--mip needs a table with s,t columns");
     if (select) {
+      for (const char* other : {"lobes", "no-lut", "tolerance", "init"}) {
+        if (args.Has(other)) {
+          args.Fail(std::string("--select heldout chooses the lobes and the "
+                                "lookup table: leave out --") +
+                    other);
+        }
+      }
       const LafortuneSelection chosen =
           SelectLafortuneHeldOut(table, options, static_cast<int>(folds));
       if (chosen.report.chosen < 0) {
@@ -217,10 +219,10 @@ int RunFitLafortune(int argc, char** argv) {
     return FinishFit(args, fit.params, fit.report, {}, FitExtras());
   }
 
-  if (select) {
+  if (select && !options.mip) {
     args.Fail(
-        "--select heldout: one model per table only (a table without s,t "
-        "columns)");
+        "--select heldout on a table with s,t columns chooses the mip "
+        "level: add --mip");
   }
   if (!text_util::EndsWith(out_path, ".exr")) {
     args.Fail(
@@ -228,7 +230,23 @@ int RunFitLafortune(int argc, char** argv) {
         "be an .exr file");
   }
   if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
-  const LafortuneMipResult result = FitLafortuneMip(table, options);
+  LafortuneMipResult result;
+  std::string selection_json;  // with --select: metadata.fit.selection
+  if (select) {
+    LafortuneLevelSelection chosen =
+        SelectLafortuneLevelHeldOut(table, options, static_cast<int>(folds));
+    if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
+    std::cout << SelectionReportText(chosen.report);
+    if (chosen.level < 0) {
+      std::cerr << "error: --select heldout: " << chosen.report.reason
+                << "; nothing written\n";
+      return 1;
+    }
+    selection_json = SelectionReportJson(chosen.report);
+    result = std::move(chosen.mip);
+  } else {
+    result = FitLafortuneMip(table, options);
+  }
   const LafortuneMipSummary summary = SummarizeLafortuneMip(result);
   std::printf(
       "lafortune fits: %d texel fit(s) over %zu level(s) in %.2f s "
@@ -249,7 +267,14 @@ int RunFitLafortune(int argc, char** argv) {
         level.mean_alternations, level.mean_iterations, level.at_search_limit,
         level.max_albedo, level.energy_scaled, level.solve_fallback);
   }
-  WriteParamMipmap(ToParamMipmap(result), out_path);
+  ParamMipmap mipmap = ToParamMipmap(result);
+  if (!selection_json.empty()) {
+    nlohmann::ordered_json meta =
+        nlohmann::ordered_json::parse(mipmap.metadata_json);
+    meta["fit"]["selection"] = nlohmann::ordered_json::parse(selection_json);
+    mipmap.metadata_json = meta.dump();
+  }
+  WriteParamMipmap(mipmap, out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
   if (summary.not_converged > 0) {
     // A texel whose lookup table still moved at the cap is usable; the map

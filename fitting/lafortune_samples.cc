@@ -26,9 +26,11 @@ struct KeyHash {
 }  // namespace
 
 ViewIndex::ViewIndex(const MeasurementTable& table) {
-  std::unordered_map<std::array<long long, 6>, int, KeyHash> views, pairs;
+  std::unordered_map<std::array<long long, 6>, int, KeyHash> views, pairs,
+      lights;
   row_view_.resize(table.rows.size());
   row_pair_.resize(table.rows.size());
+  row_light_.resize(table.rows.size());
   for (size_t i = 0; i < table.rows.size(); ++i) {
     const TableRow& row = table.rows[i];
     const std::array<long long, 6> view = {
@@ -42,6 +44,9 @@ ViewIndex::ViewIndex(const MeasurementTable& table) {
     row_view_[i] = v.first->second;
     row_pair_[i] = pairs.emplace(pair, pairs_).first->second;
     if (row_pair_[i] == pairs_) ++pairs_;
+    const std::array<long long, 6> light = {pair[3], pair[4], pair[5], 0, 0, 0};
+    row_light_[i] = lights.emplace(light, lights_).first->second;
+    if (row_light_[i] == lights_) ++lights_;
   }
 }
 

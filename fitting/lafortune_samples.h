@@ -32,10 +32,10 @@ struct TexelSamples {
   size_t size() const { return l.size(); }
 };
 
-// The distinct view directions (wo) and (light, view) pairs of a table,
-// equal to 1e-9, in order of first appearance, and each row's view and
-// pair. Built once per table; the views are shared by all texels so that
-// their lookup tables line up.
+// The distinct view directions (wo), light directions (wi) and (light,
+// view) pairs of a table, equal to 1e-9, in order of first appearance, and
+// each row's view, light and pair. Built once per table; the views are shared
+// by all texels so that their lookup tables line up.
 class ViewIndex {
  public:
   explicit ViewIndex(const MeasurementTable& table);
@@ -43,11 +43,14 @@ class ViewIndex {
   int RowView(size_t row) const { return row_view_[row]; }
   int RowPair(size_t row) const { return row_pair_[row]; }
   int pairs() const { return pairs_; }
+  // The distinct light directions (wi), likewise.
+  int RowLight(size_t row) const { return row_light_[row]; }
+  int lights() const { return lights_; }
 
  private:
   std::vector<glm::dvec3> views_;
-  std::vector<int> row_view_, row_pair_;
-  int pairs_ = 0;
+  std::vector<int> row_view_, row_pair_, row_light_;
+  int pairs_ = 0, lights_ = 0;
 };
 
 // The samples of the given rows of a table, as the cosine-weighted

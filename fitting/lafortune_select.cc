@@ -6,62 +6,26 @@
 #include <string>
 #include <vector>
 
-#include "io/input_error.h"
+#include "fitting/lafortune_select_internal.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
 namespace {
 
-// The fold of each row: its light's index among the table's distinct
-// lights (first appearance, equal to 1e-9), modulo `folds`.
-std::vector<int> LightFolds(const MeasurementTable& table, int folds,
-                            int* lights) {
-  std::vector<glm::dvec3> seen;
-  std::vector<int> fold(table.rows.size());
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const glm::dvec3& wi = table.rows[i].wi;
-    size_t k = 0;
-    while (k < seen.size() && glm::length(seen[k] - wi) > 1e-9) ++k;
-    if (k == seen.size()) seen.push_back(wi);
-    fold[i] = static_cast<int>(k % folds);
-  }
-  *lights = static_cast<int>(seen.size());
-  return fold;
-}
-
-// Whether a row is one a reflection model predicts (wi.z, wo.z > 0).
-bool Reflection(const TableRow& row) {
-  return row.wi.z > 0.0 && row.wo.z > 0.0;
-}
-
-// Adds the squared errors and squared values of `model` over the
-// reflection rows of fold `only` (every fold: only < 0), in the table's
-// quantity and channels, and counts them in *n.
-void Errors(const LafortuneModel& model, const MeasurementTable& table,
-            const std::vector<int>& fold, int only, double* se, double* ss,
-            int* n) {
-  const ModelParams params = model;
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const TableRow& row = table.rows[i];
-    if ((only >= 0 && fold[i] != only) || !Reflection(row)) continue;
-    const glm::dvec3 m = Evaluate(params, row.wi, row.wo, table.quantity);
-    for (int c = 0; c < table.channels; ++c) {
-      const double d = m[c] - row.value[c];
-      *se += d * d;
-      *ss += row.value[c] * row.value[c];
-      ++*n;
+// The first lobe of p whose N sits at its lower search limit in some
+// channel ("lobes[1]"), or "": a lobe that collapsed to a near-constant
+// (|C|^N flat over the hemisphere), so that the model is the one with a
+// lobe fewer in disguise.
+std::string CollapsedLobe(const LafortuneParams& p) {
+  for (size_t k = 0; k < p.lobes.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      const double span = kLafortuneN.fit_hi - kLafortuneN.fit_lo;
+      if (p.lobes[k].n[c] - kLafortuneN.fit_lo < 1e-9 * span) {
+        return "lobes[" + std::to_string(k) + "]";
+      }
     }
   }
-}
-
-MeasurementTable Without(const MeasurementTable& table,
-                         const std::vector<int>& fold, int f) {
-  MeasurementTable out = table;
-  out.rows.clear();
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    if (fold[i] != f) out.rows.push_back(table.rows[i]);
-  }
-  return out;
+  return "";
 }
 
 }  // namespace
@@ -71,13 +35,7 @@ LafortuneSelection SelectLafortuneHeldOut(const MeasurementTable& table,
                                           int folds) {
   folds = std::clamp(folds, 2, 20);
   int lights = 0;
-  const std::vector<int> fold = LightFolds(table, folds, &lights);
-  if (lights < folds) {
-    throw InputError(
-        table.source + ": --select heldout with " + std::to_string(folds) +
-        " folds needs at least " + std::to_string(folds) +
-        " distinct light directions, got " + std::to_string(lights));
-  }
+  const std::vector<int> fold = RequireLightFolds(table, folds, &lights);
   LafortuneSelection out;
   out.report.tolerance = 0.0;
   double best = HUGE_VAL;
@@ -95,10 +53,23 @@ LafortuneSelection SelectLafortuneHeldOut(const MeasurementTable& table,
       c.free_parameters =
           table.channels * (1 + 4 * k) +
           (lut == 1 ? table.channels * all.report.lut_views_fitted : 0);
+      c.samples = -1;  // no tangent samples
       c.usable = all.report.usable;
+      // A candidate whose lobe collapsed is the one with a lobe fewer in
+      // disguise (tried before it): scored, not chosen.
+      const std::string collapsed = CollapsedLobe(all.params.params);
+      if (!collapsed.empty()) {
+        char note[96];
+        std::snprintf(note, sizeof(note),
+                      "%s collapsed to N = %g, a near-constant: not chosen",
+                      collapsed.c_str(), kLafortuneN.fit_lo);
+        c.note = note;
+      }
+      const ModelParams all_params = all.params;
       double se = 0.0, ss = 0.0;
       int n = 0;
-      Errors(all.params, table, fold, -1, &se, &ss, &n);
+      AddFoldErrors(
+          table, fold, -1, [&](size_t) { return &all_params; }, &se, &ss, &n);
       c.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
       c.bic = n > 0 ? n * std::log(std::max(se, 1e-300) / n) +
                           c.free_parameters * std::log(static_cast<double>(n))
@@ -107,15 +78,18 @@ LafortuneSelection SelectLafortuneHeldOut(const MeasurementTable& table,
       int hn = 0;
       for (int f = 0; f < folds && c.usable; ++f) {
         const LafortuneFitResult part =
-            FitLafortuneTable(Without(table, fold, f), o);
+            FitLafortuneTable(WithoutFold(table, fold, f), o);
         c.usable = part.report.usable;
-        Errors(part.params, table, fold, f, &hse, &hss, &hn);
+        const ModelParams part_params = part.params;
+        AddFoldErrors(
+            table, fold, f, [&](size_t) { return &part_params; }, &hse, &hss,
+            &hn);
       }
       c.heldout_relative_rms =
           c.usable && hss > 0.0 ? std::sqrt(hse / hss) : -1.0;
       // The lowest held-out error; on a tie the candidate tried first (fewer
       // lobes, no table).
-      if (c.usable && c.heldout_relative_rms >= 0.0 &&
+      if (c.usable && collapsed.empty() && c.heldout_relative_rms >= 0.0 &&
           c.heldout_relative_rms < best) {
         best = c.heldout_relative_rms;
         out.report.chosen = static_cast<int>(out.report.candidates.size());

@@ -104,14 +104,17 @@ std::string SelectionReportText(const SelectionReport& r) {
     if (heldout) {
       std::snprintf(held, sizeof(held), " %12.4g", c.heldout_relative_rms);
     }
-    std::snprintf(line, sizeof(line), "%s %-34s %6d %8d %12.4g %12.6g%s%s\n",
+    const std::string samples =
+        c.samples < 0 ? std::string("-") : std::to_string(c.samples);
+    std::snprintf(line, sizeof(line), "%s %-34s %6d %8s %12.4g %12.6g%s%s\n",
                   static_cast<int>(i) == r.chosen ? "*" : " ",
-                  c.description.c_str(), c.free_parameters, c.samples,
+                  c.description.c_str(), c.free_parameters, samples.c_str(),
                   c.relative_rms, c.bic, held,
                   !c.usable           ? "  (failed)"
                   : c.meets_tolerance ? "  meets"
                                       : "");
     out << line;
+    if (!c.note.empty()) out << "    (" << c.note << ")\n";
   }
   out << "chosen: " << r.reason << "\n";
   return out.str();
@@ -127,7 +130,7 @@ std::string SelectionReportJson(const SelectionReport& r) {
     nlohmann::ordered_json e;
     e["description"] = c.description;
     e["free_parameters"] = c.free_parameters;
-    e["samples"] = c.samples;
+    if (c.samples >= 0) e["samples"] = c.samples;
     e["relative_rms"] = c.relative_rms;
     e["bic"] = c.bic;
     if (c.heldout_relative_rms >= 0.0) {
@@ -135,6 +138,7 @@ std::string SelectionReportJson(const SelectionReport& r) {
     }
     e["usable"] = c.usable;
     e["meets_tolerance"] = c.meets_tolerance;
+    if (!c.note.empty()) e["note"] = c.note;
     list.push_back(e);
   }
   j["candidates"] = list;

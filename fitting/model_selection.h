@@ -23,7 +23,7 @@ namespace clothfit {
 struct CandidateReport {
   std::string description;  // e.g. "T=2, kd=0, shared albedo"
   int free_parameters = 0;
-  int samples = 0;  // total tangent samples (cloth)
+  int samples = 0;  // total tangent samples (cloth); < 0: none (printed -)
   double relative_rms = 0.0;
   // Bayesian information criterion, chi2 + k ln(n) with sigma given,
   // n ln(RSS / n) + k ln(n) otherwise; lower is better.
@@ -33,6 +33,9 @@ struct CandidateReport {
   double heldout_relative_rms = -1.0;
   bool usable = false;
   bool meets_tolerance = false;
+  // Why a usable candidate was not eligible (e.g. "lobes[1] collapsed"),
+  // or "".
+  std::string note;
 };
 
 struct SelectionReport {

@@ -13,6 +13,7 @@
 
 #include "fitting/cloth_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/lafortune_select.h"
 #include "io/table.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
@@ -126,6 +127,41 @@ TEST(CuretFits, LafortuneLookupTableDoesNotLoseOnHeldOutRows) {
           << path << " K = " << lobes << ": with " << e_with << ", without "
           << e_without;
       EXPECT_EQ(a.report.lut_views_fitted, 0) << path;
+    }
+  }
+}
+
+// Rug b: the 3-lobe candidate's third lobe collapses to N = 0.5 (a
+// near-constant): it is scored and noted, never chosen; the chosen model
+// has no collapsed lobe and stands against the fewer-lobe candidates on
+// held-out rows.
+TEST(CuretFits, HeldOutSelectionNeverChoosesACollapsedLobe) {
+  const fs::path path =
+      fs::path(CLOTHFIT_SHARED_DIR) / "data" / "curet" / "curet_19_rug_b.csv";
+  const MeasurementTable table = ReadTable(path.string()).table;
+  const LafortuneSelection s =
+      SelectLafortuneHeldOut(table, LafortuneMipOptions(), 5);
+  ASSERT_GE(s.report.chosen, 0) << s.report.reason;
+  int noted = 0;
+  for (size_t i = 0; i < s.report.candidates.size(); ++i) {
+    const CandidateReport& c = s.report.candidates[i];
+    if (c.note.find("collapsed") == std::string::npos) continue;
+    ++noted;
+    EXPECT_NE(static_cast<int>(i), s.report.chosen) << c.description;
+  }
+  EXPECT_GE(noted, 1);
+  EXPECT_EQ(s.report.candidates[3].description, "3 lobe(s), no lookup table");
+  EXPECT_NE(s.report.candidates[3].note.find("lobes[2] collapsed"),
+            std::string::npos)
+      << s.report.candidates[3].note;
+  for (const LafortuneLobe& lobe : s.fit.params.params.lobes) {
+    for (int c = 0; c < 3; ++c) EXPECT_GT(lobe.n[c], 0.5 + 1e-6);
+  }
+  const CandidateReport& chosen = s.report.candidates[s.report.chosen];
+  for (const CandidateReport& c : s.report.candidates) {
+    if (c.note.empty() && c.usable) {
+      EXPECT_LE(chosen.heldout_relative_rms, c.heldout_relative_rms)
+          << c.description;
     }
   }
 }

@@ -1,6 +1,6 @@
 // Held-out model selection for Lafortune fits (fit --select heldout):
 // k-fold over the table's lights, each candidate scored on lights it never
-// saw.
+// saw; for texel tables with --mip, the mip level the data support.
 #include "fitting/lafortune_select.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/lafortune_level_select.h"
 #include "io/input_error.h"
 #include "models/evaluate.h"
 #include "tests/cli_test_util.h"
@@ -96,6 +97,92 @@ TEST(LafortuneSelect, FewerLightsThanFoldsIsBadInput) {
                InputError);
 }
 
+// A 4 x 4 texel table whose texels are the halves of two materials (a
+// dark left and a bright right half, `split`) or all one material, each
+// texel's rows with its own 10 % noise: 16 lights x 4 views per texel, too
+// few to tell a texel's noise from its material.
+MeasurementTable TexelTable(bool split) {
+  const std::vector<glm::dvec3> views = Hemisphere(2, 0.25);
+  LafortuneModel dark = OneLobeTruth(views);
+  dark.params.lobes[0].cx = glm::dvec3(-0.6);  // a broad lobe
+  dark.params.lobes[0].cy = glm::dvec3(-0.6);
+  dark.params.lobes[0].cz = glm::dvec3(0.7);
+  dark.params.lobes[0].n = glm::dvec3(3.0);
+  LafortuneModel bright = dark;
+  bright.params.diffuse *= 4.0;
+  MeasurementTable table;
+  table.source = "texels";
+  table.quantity = Quantity::kCosineWeighted;  // LafortuneTable's values
+  table.channels = 3;
+  table.has_texels = true;
+  uint64_t state = 777;
+  for (int t = 0; t < 4; ++t) {
+    for (int s = 0; s < 4; ++s) {
+      const LafortuneModel& m = split && s >= 2 ? bright : dark;
+      for (TableRow r : LafortuneTable(m, Hemisphere(4, 0.2), views).rows) {
+        r.s = s;
+        r.t = t;
+        for (int c = 0; c < 3; ++c) {
+          state = state * 6364136223846793005ull + 1442695040888963407ull;
+          const double u = ((state >> 11) * (1.0 / 9007199254740992.0)) - 0.5;
+          r.value[c] *= 1.0 + 0.1 * std::sqrt(12.0) * u;
+        }
+        table.rows.push_back(r);
+      }
+    }
+  }
+  return table;
+}
+
+TEST(LafortuneLevelSelect, OneMaterialIsFittedAtTheCoarsestLevel) {
+  LafortuneMipOptions options;
+  options.fit.lobes = 1;
+  const LafortuneLevelSelection s =
+      SelectLafortuneLevelHeldOut(TexelTable(false), options, 5);
+  ASSERT_EQ(s.report.candidates.size(), 3u);  // 4 x 4, 2 x 2, 1 x 1
+  for (const CandidateReport& c : s.report.candidates) {
+    ASSERT_TRUE(c.usable) << c.description;
+    std::printf("%s: training %.4g, held-out %.4g\n", c.description.c_str(),
+                c.relative_rms, c.heldout_relative_rms);
+  }
+  // Level 0 fits each texel's noise: best on its own rows, worst on
+  // lights it never saw.
+  EXPECT_LT(s.report.candidates[0].relative_rms,
+            s.report.candidates[2].relative_rms);
+  EXPECT_GT(s.report.candidates[0].heldout_relative_rms,
+            s.report.candidates[2].heldout_relative_rms);
+  EXPECT_EQ(s.level, 2);
+  EXPECT_EQ(s.report.chosen, 2);
+  // Every finer texel holds the chosen level's model.
+  const LafortuneModel& top = s.mip.levels[2].texels[0].params;
+  for (int l = 0; l < 2; ++l) {
+    for (const LafortuneFitResult& t : s.mip.levels[l].texels) {
+      EXPECT_EQ(t.params.params.diffuse, top.params.diffuse) << l;
+      EXPECT_EQ(t.params.params.lobes[0].n, top.params.lobes[0].n) << l;
+    }
+  }
+}
+
+TEST(LafortuneLevelSelect, TwoMaterialsKeepTheLevelThatSeparatesThem) {
+  LafortuneMipOptions options;
+  options.fit.lobes = 1;
+  const LafortuneLevelSelection s =
+      SelectLafortuneLevelHeldOut(TexelTable(true), options, 5);
+  ASSERT_EQ(s.report.candidates.size(), 3u);
+  std::printf("%s", SelectionReportText(s.report).c_str());
+  // Level 1's 2 x 2 groups are each one material; the 1 x 1 level mixes.
+  EXPECT_EQ(s.level, 1) << SelectionReportText(s.report);
+  const std::vector<LafortuneFitResult>& level0 = s.mip.levels[0].texels;
+  EXPECT_EQ(level0[0].params.params.diffuse, level0[5].params.params.diffuse);
+  // The bright half reflects about 4 times the dark half's diffuse.
+  const glm::dvec3 wi = DirectionFromAngles(Radians(30.0), 0.0);
+  const glm::dvec3 wo = DirectionFromAngles(Radians(45.0), Radians(120.0));
+  const double dark = LafortuneRho(level0[0].params, wi, wo).x;
+  const double bright = LafortuneRho(level0[3].params, wi, wo).x;
+  std::printf("dark %.4g, bright %.4g\n", dark, bright);
+  EXPECT_GT(bright, 2.0 * dark);
+}
+
 TEST(LafortuneSelectCli, ReportsEveryCandidateAndRefusesConflicts) {
   using testing_util::ExpectBadInput;
   using testing_util::RunClothfit;
@@ -128,6 +215,32 @@ TEST(LafortuneSelectCli, ReportsEveryCandidateAndRefusesConflicts) {
       args.insert(args.end(), extra.begin(), extra.end());
     ExpectBadInput(dir, args, {});
   }
+}
+
+TEST(LafortuneSelectCli, TexelTableChoosesTheMipLevelAndNeedsMip) {
+  using testing_util::RunClothfit;
+  const fs::path dir = testing_util::FreshTestDir("lafortune_level_");
+  const std::string table = (dir / "g.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--gonio", "plain", "--texels", "4",
+                              "--directions", "4", "--out", table})
+                .status,
+            0);
+  const std::string out = (dir / "m.exr").string();
+  testing_util::ExpectBadInput(dir,
+                               {"fit", "--model", "lafortune", "--data", table,
+                                "--select", "heldout", "--out", out},
+                               {"--mip"});
+  const testing_util::RunResult r =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--data", table, "--mip",
+                        "--select", "heldout", "--out", out});
+  ASSERT_TRUE(r.status == 0 || r.status == 1) << testing_util::Describe(r);
+  for (const char* level : {"level 0 (4 x 4)", "level 1 (2 x 2)",
+                            "level 2 (1 x 1)", "chosen: the lowest"}) {
+    EXPECT_NE(r.out.find(level), std::string::npos) << r.out;
+  }
+  const std::string index = testing_util::ReadText(out + ".json");
+  EXPECT_NE(index.find("\"selection\""), std::string::npos);
+  EXPECT_EQ(testing_util::Count(index, "\"heldout_relative_rms\""), 3u);
 }
 
 }  // namespace
