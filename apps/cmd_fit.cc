@@ -21,7 +21,8 @@
 namespace clothfit {
 
 void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
-                      bool robust_loss, const std::string& threads_help) {
+                      bool robust_loss, const std::string& threads_help,
+                      const std::string& noise_default) {
   if (robust_loss) {
     args->Option("loss", "L", "robust loss: none, huber or cauchy", "none");
     args->Option("loss-scale", "S", "robust loss scale, in sigmas",
@@ -41,8 +42,8 @@ void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
   args->Option("noise", "M",
                "noise model of the values: table (the sigma column), "
                "relative (sigma = F max(|value|, floor)) or absolute "
-               "(sigma = F); default: table with a sigma column, else "
-               "relative",
+               "(sigma = F); default: " +
+                   noise_default,
                "");
   args->Option("noise-level", "F",
                "the noise level F (relative: a fraction of the value; "

@@ -40,9 +40,11 @@ int RunFitLafortune(int argc, char** argv) {
       "clothfit fit --model lafortune (--data T.csv | --stack M.csv) "
       "--out P.json|P.exr [--lobes K | --tolerance REL] [--mip] [options]",
       "Fits Lafortune lobes with a per-view lookup table T(v) (Daubert et "
-      "al. 2001): lobes by Levenberg-Marquardt with T fixed,\nthen T in "
-      "closed form, alternately. A table without s,t columns gives one "
-      "model, written as a parameter file (JSON).\nA table with s,t columns "
+      "al. 2001): a first pass of the lobes by Levenberg-Marquardt with T "
+      "fixed,\nthen lobes and T jointly (T eliminated in closed form; "
+      "--solve alternate: the paper's alternation). A table without s,t "
+      "columns\ngives one model, written as a parameter file (JSON), with "
+      "standard deviations of the lobes.\nA table with s,t columns "
       "(or an image stack) is fitted per texel in parallel, with --mip also "
       "per 2x2, 4x4, ... group down to 1x1,\nand written as a tiled, "
       "mip-mapped OpenEXR (one channel per parameter) with a JSON index "
@@ -93,7 +95,9 @@ int RunFitLafortune(int argc, char** argv) {
   solver_defaults.num_threads = defaults.threads;
   solver_defaults.linear_solver = defaults.fit.linear_solver;
   AddSolverOptions(&args, solver_defaults, false,
-                   "texel fits in parallel (iterations: per pass)");
+                   "texel fits in parallel (iterations: per pass)",
+                   "table with a sigma column, else absolute (every row "
+                   "alike; docs/lafortune.md)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out_path = args.Required("out");

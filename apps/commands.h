@@ -68,8 +68,12 @@ void NoteSlabRegime(const SlabParams& p);
 // on them: `threads_help`), --linear-solver, and with `robust_loss`
 // --loss and --loss-scale; `defaults` are the command's. Reading them
 // adds a progress line on a terminal.
+// noise_default: what --noise is without it, in words.
 void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
-                      bool robust_loss, const std::string& threads_help);
+                      bool robust_loss, const std::string& threads_help,
+                      const std::string& noise_default =
+                          "table with a sigma column, else "
+                          "relative");
 SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss);
 
 // Reads the table at `path`, dropping invalid rows (with a warning naming

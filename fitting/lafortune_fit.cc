@@ -94,10 +94,11 @@ constexpr int kLaterPassIterations = 8;
 
 // One Levenberg-Marquardt pass on one channel (x in the channel layout,
 // solved in the bounded variables: a start outside the bounds starts on
-// them); returns iterations.
+// them; far_start: from the paper's or a given start, not next to the
+// solution); returns iterations.
 int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
                  int channel, int lobes, const LafortuneFitOptions& fit,
-                 double peak_cap, double* x) {
+                 double peak_cap, bool far_start, double* x) {
   std::vector<double> y = LobesToBounded(x, lobes, peak_cap);
   LobesFromBounded(y.data(), lobes, peak_cap, x);
   // Ceres refuses (and logs) a start whose cost is not finite; such a start
@@ -120,6 +121,11 @@ int SolveChannel(const TexelSamples& samples, const std::vector<double>& lut,
   options.max_num_iterations = fit.max_iterations;
   options.function_tolerance = fit.function_tolerance;
   options.num_threads = 1;
+  // From a far start (the first pass) Ceres' projected line search
+  // steadies the steps: without it CUReT tables' held-out errors rose by
+  // up to 26 % (polyester zoomed), median 0.102 -> 0.106. Next to the
+  // solution it only costs Jacobians (fitting/ceres_linear_solver_internal.h).
+  if (!far_start) SkipProjectedLineSearch(&options);
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
@@ -145,15 +151,17 @@ LafortuneParams PaperStart(int lobes, double diffuse, double c) {
   return p;
 }
 
-// Fits all three channels' lobes with the given lookup table.
-// With warm_channels, channels 1 and 2 start from channel 0's solution
+// Fits all three channels' lobes with the given lookup table. The first
+// pass (from a far start) runs Ceres' projected line search and, with
+// options.warm_channels, channels 1 and 2 start from channel 0's solution
 // scaled to their data (diffuse by the ratio s of the channel sums, each
 // lobe's C by s^(1/N), so its value scales by s): the channels of a texel
 // share their shape, and a start next to the solution saves iterations.
 // Returns the solver's iterations.
 int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
-             const LafortuneFitOptions& options, bool warm_channels,
+             const LafortuneFitOptions& options, bool first_pass,
              double peak_cap, LafortuneParams* p) {
+  const bool warm_channels = first_pass && options.warm_channels;
   int iterations = 0;
   const int lobes = static_cast<int>(p->lobes.size());
   std::vector<double> x(LafortuneChannelSize(lobes));
@@ -173,8 +181,8 @@ int FitLobes(const TexelSamples& samples, const std::vector<glm::dvec3>& t,
     }
     std::vector<double> lut(t.size());
     for (size_t k = 0; k < t.size(); ++k) lut[k] = t[k][c];
-    iterations +=
-        SolveChannel(samples, lut, c, lobes, options, peak_cap, x.data());
+    iterations += SolveChannel(samples, lut, c, lobes, options, peak_cap,
+                               first_pass, x.data());
     LafortuneChannelFromArray(x.data(), c, p);
   }
   return iterations;
@@ -324,7 +332,7 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   const bool joint = JointSolveRuns(options, lut);
   for (LafortuneParams p : starts) {
     out.report.iterations +=
-        FitLobes(first, t, options, options.warm_channels, peak_cap, &p);
+        FitLobes(first, t, options, /*first_pass=*/true, peak_cap, &p);
     const double cost = Cost(samples, t, p);
     if (Finite(p) && cost < best_cost) {
       best_cost = cost;

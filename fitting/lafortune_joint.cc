@@ -179,6 +179,7 @@ JointChannelResult SolveJointChannel(const TexelSamples& samples,
   solver.max_num_iterations = options.max_iterations;
   solver.function_tolerance = options.joint_function_tolerance;
   solver.parameter_tolerance = 1e-10;
+  SkipProjectedLineSearch(&solver);
   solver.num_threads = 1;
   solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
