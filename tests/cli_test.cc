@@ -1092,15 +1092,15 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
   const RunResult sparse = RunClothfit(
       dir, {"fit", "--model", "lafortune", "--data", table, "--out", again});
   EXPECT_EQ(sparse.status, 0) << Describe(sparse);
-  EXPECT_NE(sparse.err.find("0 of 800 views have at least 8 samples"),
+  EXPECT_NE(sparse.err.find("0 of 800 views have at least 16 samples"),
             std::string::npos)
       << sparse.err;
-  // A gonio-style table (every light at each of 6 views): a lookup table
-  // never fitted (one alternation) is not converged, exit 1.
+  // A gonio-style table (each of 18 lights at each of 6 views): a lookup
+  // table never fitted (one alternation) is not converged, exit 1.
   std::string grid =
       "# quantity: cosine_weighted\ntheta_i,phi_i,theta_o,phi_o\n";
   for (int v = 0; v < 6; ++v) {
-    for (int l = 0; l < 12; ++l) {
+    for (int l = 0; l < 18; ++l) {
       grid += std::to_string(10 * (l % 6) + 5) + "," +
               std::to_string(60 * (l / 6) + 15) + "," +
               std::to_string(12 * v + 5) + "," + std::to_string(45 * v) + "\n";

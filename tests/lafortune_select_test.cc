@@ -198,7 +198,7 @@ TEST(LafortuneSelectCli, ReportsEveryCandidateAndRefusesConflicts) {
   EXPECT_NE(r.out.find("held-out"), std::string::npos) << r.out;
   const std::string text = testing_util::ReadText(out);
   // One entry per candidate: 4 lobe counts; no lookup-table candidates on
-  // CUReT (no view has 8 rows).
+  // CUReT (no view has 16 rows).
   EXPECT_EQ(testing_util::Count(text, "\"heldout_relative_rms\""), 4u) << text;
   for (const std::vector<std::string>& extra :
        {std::vector<std::string>{"--lobes", "2"},
