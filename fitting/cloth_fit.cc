@@ -28,7 +28,51 @@ struct Weave {
   ClothParams layout;          // directions, base offsets, fixed values
   bool weave_blocks = false;   // coverage/offset_scale blocks passed to Ceres
   bool shared_albedo = false;  // every thread uses thread 0's albedo
+  // Free coverages that sum to at most 1, by stick-breaking (the threads
+  // s_0, s_1, ... in order): the solver's entry u_k in [0, 1] gives
+  // a_{s_k} = R u_k prod_{i<k} (1 - u_i), R = 1 - the fixed coverages'
+  // sum (at least 0). Box bounds on u, no clipping of a; empty: no
+  // coverage is free.
+  std::vector<size_t> stick;
+  double remaining = 1.0;
 };
+
+// The index of thread j's coverage in the flat vector.
+constexpr size_t CoverageEntry(size_t j) {
+  return j * kPerThread + kThreadFlatSize;
+}
+
+// The coverages a of the stick-breaking entries u of x (Weave::stick), in
+// any scalar type: `coverage(j)` reads and writes thread j's entry.
+template <typename T, typename Coverage>
+void StickToCoverage(const Weave& weave, const Coverage& coverage) {
+  T left(weave.remaining);
+  for (size_t j : weave.stick) {
+    T& entry = coverage(j);
+    const T u = entry;
+    entry = left * u;
+    left = left * (T(1.0) - u);
+  }
+}
+
+// x with the stick entries as coverages (what the report and the
+// parameter file give), and its inverse, a start's coverages as stick
+// entries (moved into [0, 1]).
+std::vector<double> StickToCoverage(const Weave& weave, std::vector<double> x) {
+  StickToCoverage<double>(
+      weave, [&](size_t j) -> double& { return x[CoverageEntry(j)]; });
+  return x;
+}
+std::vector<double> CoverageToStick(const Weave& weave, std::vector<double> x) {
+  double left = weave.remaining;
+  for (size_t j : weave.stick) {
+    double& entry = x[CoverageEntry(j)];
+    const double u = left > 0.0 ? std::clamp(entry / left, 0.0, 1.0) : 0.0;
+    entry = u;
+    left *= 1.0 - u;
+  }
+  return x;
+}
 
 // The tangent samples of one row, computed once when the directions and the
 // tangent offsets are fixed; with eta fixed, their Fresnel terms too. Then
@@ -97,6 +141,8 @@ ClothParamsT<T> ClothFromBlocks(const Weave& weave, const T* const* blocks,
       }
     }
   }
+  StickToCoverage<T>(weave,
+                     [&](size_t j) -> T& { return c.threads[j].coverage; });
   return c;
 }
 
@@ -291,6 +337,20 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     offsets_fixed = offsets_fixed && !is_free(j, kOffsetScale);
     eta_fixed[j] = !is_free(j, kEta);
   }
+  double fixed_coverage = 0.0;
+  for (size_t j = 0; j < n; ++j) {
+    if (is_free(j, kCoverage)) {
+      weave->stick.push_back(j);
+    } else {
+      fixed_coverage += init.threads[j].coverage;
+    }
+  }
+  weave->remaining = std::max(0.0, 1.0 - fixed_coverage);
+  if (!weave->stick.empty()) {
+    lsq.reported = [weave](const std::vector<double>& x) {
+      return StickToCoverage(*weave, x);
+    };
+  }
   // Ceres blocks: [thread j params] (+ [weave j]) in vector order; the
   // weave entries that Ceres does not see stay at their initial values.
   for (size_t j = 0; j < n; ++j) {
@@ -393,14 +453,15 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     for (size_t j = 0; j < n; ++j) c.threads[j].params = point.threads[j];
     std::vector<double> x = ToVector(c);
     x.back() = point.scale;
-    starts.push_back(x);
+    starts.push_back(CoverageToStick(*weave, x));
   }
 
   ClothFitResult result;
   std::vector<double> x = starts.front();
   result.report = SolveLeastSquares(lsq, starts, options.solver, &x);
   ReportWeighting(weighting, &result.report);
-  result.params = FromVector(init, x, weave->shared_albedo);
+  result.params =
+      FromVector(init, StickToCoverage(*weave, x), weave->shared_albedo);
   result.report.rows = static_cast<int>(table.rows.size());
   if (weave->shared_albedo) {  // report the tied albedos at their value
     for (ParameterReport& p : result.report.parameters) {

@@ -49,9 +49,10 @@ ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
   const bool has_r = r.size() == j.rows();
   const double s2 = sigma_known || dof <= 0 ? 1.0 : 2.0 * cost / dof;
   const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd wd = norms.cwiseInverse().asDiagonal() * w;
+  out.covariance = wd * wd.transpose() * s2;
   for (int c = 0; c < n; ++c) {
-    const double var = w.row(c).squaredNorm() / (norms[c] * norms[c]);
-    out.stddev[c] = std::sqrt(var * s2);
+    out.stddev[c] = std::sqrt(out.covariance(c, c));
   }
   // With J D^-1 = U S V^T the sandwich is D^-1 A A^T D^-1,
   // A = V S^-1 U^T diag(e), e_i = r_i / (1 - h_i) with the leverage h_i =
@@ -66,9 +67,11 @@ ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
       const double h = std::min(u.row(i).squaredNorm(), 1.0 - 1e-12);
       e[i] = r[i] / (1.0 - h);
     }
-    const Eigen::MatrixXd a = w * (u.transpose() * e.asDiagonal());
+    const Eigen::MatrixXd a = norms.cwiseInverse().asDiagonal() * w *
+                              (u.transpose() * e.asDiagonal());
+    out.sandwich_covariance = a * a.transpose();
     for (int c = 0; c < n; ++c) {
-      out.sandwich[c] = std::sqrt(a.row(c).squaredNorm()) / norms[c];
+      out.sandwich[c] = std::sqrt(out.sandwich_covariance(c, c));
     }
   }
   return out;

@@ -15,6 +15,9 @@ namespace clothfit {
 struct ColumnCovariance {
   std::vector<double> stddev, sandwich;
   std::vector<int> not_identifiable;
+  // The whole matrices (columns x columns; empty where not available), for
+  // a report in other variables (delta method, least_squares.cc).
+  Eigen::MatrixXd covariance, sandwich_covariance;
 };
 
 // J: residuals x free parameters, of the weighted residuals r (the

@@ -76,6 +76,38 @@ void Build(const LeastSquaresProblem& lsq, const SolverOptions& options,
   }
 }
 
+// The standard deviations of lsq.reported(x) by the delta method:
+// G Cov G^T over the free entries, G by central differences (steps of
+// 1e-6 of the entry's scale; the reparameterisations are smooth beyond
+// their bounds too).
+void ReportedStddev(const LeastSquaresProblem& lsq,
+                    const std::vector<double>& x,
+                    const std::vector<int>& free_index,
+                    const ColumnCovariance& cov, std::vector<double>* stddev,
+                    std::vector<double>* sandwich) {
+  const int n = static_cast<int>(free_index.size());
+  Eigen::MatrixXd g(n, n);
+  for (int c = 0; c < n; ++c) {
+    const double h = 1e-6 * std::max(1.0, std::abs(x[free_index[c]]));
+    std::vector<double> up = x, down = x;
+    up[free_index[c]] += h;
+    down[free_index[c]] -= h;
+    const std::vector<double> yu = lsq.reported(up), yd = lsq.reported(down);
+    for (int r = 0; r < n; ++r) {
+      g(r, c) = (yu[free_index[r]] - yd[free_index[r]]) / (2.0 * h);
+    }
+  }
+  const Eigen::MatrixXd c_model = g * cov.covariance * g.transpose();
+  const bool has_sandwich = cov.sandwich_covariance.rows() == n;
+  Eigen::MatrixXd c_sandwich;
+  if (has_sandwich) c_sandwich = g * cov.sandwich_covariance * g.transpose();
+  for (int r = 0; r < n; ++r) {
+    (*stddev)[free_index[r]] = std::sqrt(std::max(0.0, c_model(r, r)));
+    (*sandwich)[free_index[r]] =
+        has_sandwich ? std::sqrt(std::max(0.0, c_sandwich(r, r))) : -1.0;
+  }
+}
+
 // Standard deviations from the Jacobian of the free parameters at the
 // solution (fitting/covariance_internal.h); the parameters the data cannot
 // determine are named instead.
@@ -128,6 +160,9 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
         stddev[free_index[c]] = cov.stddev[c];
         sandwich[free_index[c]] = cov.sandwich[c];
       }
+      if (lsq.reported && cov.not_identifiable.empty()) {
+        ReportedStddev(lsq, x, free_index, cov, &stddev, &sandwich);
+      }
       if (!cov.not_identifiable.empty()) {
         report->identifiability = "not identifiable:";
         for (size_t k = 0; k < cov.not_identifiable.size(); ++k) {
@@ -138,15 +173,17 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
       }
     }
   }
+  const std::vector<double> values = lsq.reported ? lsq.reported(x) : x;
   for (size_t i = 0; i < x.size(); ++i) {
     const ParameterSpec& spec = lsq.specs[i];
     ParameterReport p;
     p.name = spec.name;
-    p.value = x[i];
+    p.value = values[i];
     p.free = spec.free;
     p.lower = spec.lower;
     p.upper = spec.upper;
-    p.at_bound = spec.free && OnFitBound(p.value, spec.lower, spec.upper);
+    // On the solver's bound (a reparameterised entry's too).
+    p.at_bound = spec.free && OnFitBound(x[i], spec.lower, spec.upper);
     p.at_search_limit = p.at_bound && !spec.physical_bounds;
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];

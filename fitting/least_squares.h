@@ -81,6 +81,12 @@ struct LeastSquaresProblem {
   // recomputes the residuals' weights at x; the solver then solves again
   // from the best solution until the weights settle.
   std::function<void(const std::vector<double>& x)> reweight;
+  // If set: the solver's x is not what is reported (a reparameterisation,
+  // e.g. coverages that sum to at most 1, fitting/cloth_fit.cc); the
+  // report gives reported(x) (same size and names as specs) and its
+  // standard deviations by the delta method, G Cov G^T with G = d
+  // reported / dx over the free entries (central differences).
+  std::function<std::vector<double>(const std::vector<double>& x)> reported;
 };
 
 // Solves from each start in `starts` (each a full x), keeps the lowest cost,

@@ -411,6 +411,57 @@ TEST(ClothFitIdentifiability, ZeroCoverageThreadIsNamedAndTheOtherIsNot) {
   }
 }
 
+// Free coverages are reparameterised by stick-breaking (fitting/
+// cloth_fit.cc), not clipped: the written coverages never sum to more than
+// 1, even from a start whose coverages sum to 1.8; coverages the data
+// determine are recovered, with a standard deviation (delta method) that
+// covers the truth.
+TEST(ClothFitCoverage, FreeCoveragesSumToAtMostOneAndAreRecovered) {
+  ClothParams truth = Preset("linen_plain");
+  truth.threads[0].coverage = 0.6;
+  truth.threads[1].coverage = 0.3;
+  ClothFitOptions options = DefaultOptions();
+  options.free_only = {"coverage", "albedo"};
+  // A start far outside the constraint: 0.9 + 0.9.
+  ClothParams start = truth;
+  start.threads[0].coverage = start.threads[1].coverage = 0.9;
+  int within2 = 0, n = 0;
+  for (int k = 0; k < 10; ++k) {
+    const MeasurementTable table = ClothTable(truth, 0.01, kSeed + 40 + k, 800);
+    const ClothFitResult r = FitCloth(table, start, options);
+    ASSERT_TRUE(r.report.usable) << r.report.message;
+    double sum = 0.0;
+    for (const ClothThread& th : r.params.threads) sum += th.coverage;
+    EXPECT_LE(sum, 1.0 + 1e-12);
+    EXPECT_EQ(ValidateClothParams(r.params), "");
+    for (const ParameterReport& p : r.report.parameters) {
+      if (p.name.find("coverage") == std::string::npos) continue;
+      const size_t j = p.name[8] - '0';
+      // What is reported is what is written.
+      EXPECT_DOUBLE_EQ(p.value, r.params.threads[j].coverage) << p.name;
+      ASSERT_GT(p.stddev, 0.0) << p.name << " " << r.report.identifiability;
+      const double truth_j = truth.threads[j].coverage;
+      EXPECT_NEAR(p.value, truth_j, 0.05) << p.name;
+      within2 += std::abs(p.value - truth_j) <= 2.0 * p.stddev;
+      ++n;
+    }
+  }
+  EXPECT_GE(within2, 17) << "of " << n;  // >= 85 % within two sigma
+  // Data brighter than full coverage allows: the sum sits at 1, not above.
+  ClothParams bright = truth;
+  for (ClothThread& th : bright.threads) th.params.albedo *= 3.0;
+  bright.threads[0].coverage = 0.7;
+  bright.threads[1].coverage = 0.3;
+  MeasurementTable table = ClothTable(bright, 0.0, kSeed + 60, 800);
+  for (TableRow& row : table.rows) row.value *= 1.5;
+  options.free_only = {"coverage"};
+  const ClothFitResult r = FitCloth(table, start, options);
+  double sum = 0.0;
+  for (const ClothThread& th : r.params.threads) sum += th.coverage;
+  EXPECT_LE(sum, 1.0 + 1e-12);
+  EXPECT_EQ(ValidateClothParams(r.params), "");
+}
+
 // One row (3 values) cannot determine 2 x 6 free parameters.
 TEST(ClothFitIdentifiability, SingleRowIsReported) {
   const ClothParams preset = Preset("silk_shot");
