@@ -76,9 +76,28 @@ void ReportLafortuneStddev(const TexelSamples& samples,
   // The gauge: T of the fitted views is t + D u with sum(D u) = 0
   // (columns e_j - e_last), so the table's mean stays where it is.
   const int nu = owned.empty() ? 0 : static_cast<int>(owned.size()) - 1;
+  const int m = static_cast<int>(samples.size());
+  // The Jacobian is dense (and its SVD holds two more of its size), and the
+  // weights of the following views take owned^2 x following lookups:
+  // beyond kMaxWork (1e7 Jacobian entries, 80 MB each) the fit gives
+  // none, and says so.
+  constexpr double kMaxWork = 1e7;
+  const double following =
+      static_cast<double>(samples.views.size() - owned.size());
+  if (static_cast<double>(m) * (nx + nu) > kMaxWork ||
+      static_cast<double>(owned.size()) * owned.size() * following >
+          100.0 * kMaxWork) {
+    report->identifiability =
+        "no standard deviations: " + std::to_string(m) + " samples x " +
+        std::to_string(nx + nu) + " parameters per channel (" +
+        std::to_string(owned.size()) +
+        " fitted views) is beyond the "
+        "covariance's limit (1e7 Jacobian entries; fit a subset of the rows "
+        "for them)";
+    return;
+  }
   const std::vector<std::vector<double>> follow =
       FollowWeights(samples.views, owned);
-  const int m = static_cast<int>(samples.size());
   std::map<std::string, ParameterReport*> by_name;
   for (ParameterReport& r : report->parameters) by_name[r.name] = &r;
   std::vector<std::string> not_identifiable;

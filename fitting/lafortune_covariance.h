@@ -26,7 +26,8 @@ namespace clothfit {
 // channel's 2 cost / dof. Sets report->identifiability instead when the
 // data do not determine some entries (a collapsed lobe) or when the
 // model is not the least-squares solution (scaled to conserve energy, or
-// a view's T lowered to the energy bound).
+// a view's T lowered to the energy bound), or when the dense Jacobian
+// would exceed 1e7 entries (samples x parameters of a channel).
 void ReportLafortuneStddev(const TexelSamples& samples,
                            const LafortuneModel& model,
                            const std::vector<bool>& own, bool sigma_known,

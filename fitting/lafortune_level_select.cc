@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,16 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
   int lights = 0;
   const std::vector<int> fold = RequireLightFolds(table, folds, &lights);
   LafortuneLevelSelection out;
-  out.mip = FitLafortuneMip(table, options);
+  // Progress over all folds + 1 fits (each the same texel jobs).
+  auto progress_of = [&](int fit) -> std::function<void(int, int)> {
+    if (!options.progress) return nullptr;
+    return [&options, fit, folds](int done, int all) {
+      options.progress(fit * all + done, (folds + 1) * all);
+    };
+  };
+  LafortuneMipOptions all_rows = options;
+  all_rows.progress = progress_of(0);
+  out.mip = FitLafortuneMip(table, all_rows);
   const size_t levels = out.mip.levels.size();
   // Held-out errors per level, pooled over the folds.
   std::vector<double> hse(levels, 0.0), hss(levels, 0.0);
@@ -69,7 +79,7 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
   std::vector<bool> usable(levels, true);
   for (int f = 0; f < folds; ++f) {
     LafortuneMipOptions o = options;
-    o.progress = nullptr;
+    o.progress = progress_of(f + 1);
     const LafortuneMipResult part =
         FitLafortuneMip(WithoutFold(table, fold, f), o);
     const std::vector<std::vector<ModelParams>> models = LevelModels(part);
