@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
@@ -271,14 +270,7 @@ int RunFitLafortune(int argc, char** argv) {
         level.mean_alternations, level.mean_iterations, level.at_search_limit,
         level.max_albedo, level.energy_scaled, level.solve_fallback);
   }
-  ParamMipmap mipmap = ToParamMipmap(result);
-  if (!selection_json.empty()) {
-    nlohmann::ordered_json meta =
-        nlohmann::ordered_json::parse(mipmap.metadata_json);
-    meta["fit"]["selection"] = nlohmann::ordered_json::parse(selection_json);
-    mipmap.metadata_json = meta.dump();
-  }
-  WriteParamMipmap(mipmap, out_path);
+  WriteParamMipmap(ToParamMipmap(result, selection_json), out_path);
   std::printf("wrote %s and %s.json\n", out_path.c_str(), out_path.c_str());
   if (summary.not_converged > 0) {
     // A texel whose lookup table still moved at the cap is usable; the map

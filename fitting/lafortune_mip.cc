@@ -310,7 +310,8 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
   return out;
 }
 
-ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
+ParamMipmap ToParamMipmap(const LafortuneMipResult& result,
+                          const std::string& selection_json) {
   std::vector<LafortuneTexelMap> levels;
   for (const LafortuneLevel& level : result.levels) {
     LafortuneTexelMap map;
@@ -345,6 +346,9 @@ ParamMipmap ToParamMipmap(const LafortuneMipResult& result) {
   fit["at_search_limit"] = summary.at_search_limit;
   fit["alternation_cap"] = summary.not_converged;
   fit["energy_scaled"] = summary.energy_scaled;
+  if (!selection_json.empty()) {
+    fit["selection"] = nlohmann::ordered_json::parse(selection_json);
+  }
   meta["fit"] = fit;
   mipmap.metadata_json = meta.dump();
   return mipmap;

@@ -110,7 +110,10 @@ struct LafortuneMipSummary {
 };
 LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result);
 
-// The result as a parameter mip map (io/lafortune_mipmap.h).
-ParamMipmap ToParamMipmap(const LafortuneMipResult& result);
+// The result as a parameter mip map (io/lafortune_mipmap.h), what the fits
+// came to in the index's metadata.fit, and there as "selection" the report
+// of a held-out selection when given (SelectionReportJson; "" for none).
+ParamMipmap ToParamMipmap(const LafortuneMipResult& result,
+                          const std::string& selection_json = "");
 
 }  // namespace clothfit
