@@ -24,14 +24,15 @@ Weighting LafortuneWeighting(const MeasurementTable& table,
   return Weighting(table, n);
 }
 
-LafortuneFitResult FitTexelRows(const MeasurementTable& table,
-                                const Weighting& weighting,
-                                const ViewIndex& views,
-                                const std::vector<size_t>& rows,
-                                const LafortuneMipOptions& options) {
-  int skipped = 0;
-  const TexelSamples samples =
-      CollectSamples(table, weighting, views, rows, &skipped);
+namespace {
+
+// FitTexelRows on the rows' samples (CollectSamples; `skipped` rows left
+// out), which the caller keeps.
+LafortuneFitResult FitTexelSamples(const TexelSamples& samples, int skipped,
+                                   const MeasurementTable& table,
+                                   const ViewIndex& views,
+                                   const std::vector<size_t>& rows,
+                                   const LafortuneMipOptions& options) {
   LafortuneFitResult best;
   std::vector<int> counts = {options.fit.lobes};
   if (options.tolerance > 0.0) counts = {0, 1, 2, 3};
@@ -54,6 +55,19 @@ LafortuneFitResult FitTexelRows(const MeasurementTable& table,
     }
   }
   return best;
+}
+
+}  // namespace
+
+LafortuneFitResult FitTexelRows(const MeasurementTable& table,
+                                const Weighting& weighting,
+                                const ViewIndex& views,
+                                const std::vector<size_t>& rows,
+                                const LafortuneMipOptions& options) {
+  int skipped = 0;
+  const TexelSamples samples =
+      CollectSamples(table, weighting, views, rows, &skipped);
+  return FitTexelSamples(samples, skipped, table, views, rows, options);
 }
 
 namespace {
@@ -100,13 +114,15 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   std::vector<size_t> rows(table.rows.size());
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   const Weighting weighting = LafortuneWeighting(table, options.noise);
-  LafortuneFitResult fit = FitTexelRows(table, weighting, views, rows, options);
+  int skipped = 0;
+  const TexelSamples samples =
+      CollectSamples(table, weighting, views, rows, &skipped);
+  LafortuneFitResult fit =
+      FitTexelSamples(samples, skipped, table, views, rows, options);
   fit.report.parameters = LafortuneParameterReports(fit.params.params);
   if (fit.report.usable) {
     // The lobes' standard deviations at the table's gauge, with T free at
     // the views the fit gave an entry of their own.
-    const TexelSamples samples =
-        CollectSamples(table, weighting, views, rows, nullptr);
     std::vector<bool> own(samples.views.size(), false);
     if (fit.report.lut_views_fitted > 0) {
       own = LafortuneOwnedViews(samples, options.fit.min_lut_samples);
