@@ -21,21 +21,18 @@ using TexelRows = std::map<std::pair<int, int>, std::vector<size_t>>;
 
 // The error of mip level `l` of a fit: for each texel (group) of the level,
 // the relative RMS of its model at the held-out rows of all the level-0
-// texels it pools (the group a level-0 texel joins as FitLafortuneMip
-// pools them: x -> min(x / 2, width - 1) per level); the mean over the
-// level's texels. *usable: every texel of the level fitted.
+// texels it pools (LafortuneMipGroup: the group a level-0 texel joins as
+// FitLafortuneMip pools them); the mean over the level's texels.
+// *usable: every texel of the level fitted.
 double LevelError(const LafortuneMipResult& r, size_t l,
                   const MeasurementTable& test, const ViewIndex& test_views,
                   const TexelRows& test_rows, bool* usable) {
   const LafortuneLevel& level = r.levels[l];
   std::vector<std::vector<size_t>> pooled(level.texels.size());
   for (const auto& [texel, indices] : test_rows) {
-    int x = texel.first, y = texel.second;
-    for (size_t k = 1; k <= l; ++k) {
-      x = std::min(x / 2, r.levels[k].width - 1);
-      y = std::min(y / 2, r.levels[k].height - 1);
-    }
-    std::vector<size_t>& to = pooled[y * level.width + x];
+    const int g = LafortuneMipGroup(r, l, texel.first, texel.second);
+    if (g < 0) continue;
+    std::vector<size_t>& to = pooled[g];
     to.insert(to.end(), indices.begin(), indices.end());
   }
   *usable = true;

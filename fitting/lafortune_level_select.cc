@@ -12,21 +12,6 @@
 namespace clothfit {
 namespace {
 
-// The index, in level `l` of r, of the group that level-0 texel (s, t)
-// joins (FitLafortuneMip: x -> min(x / 2, width - 1) per level); -1 when
-// (s, t) is outside level 0.
-int GroupOf(const LafortuneMipResult& r, size_t l, int s, int t) {
-  if (r.levels.empty() || s < 0 || t < 0 || s >= r.levels[0].width ||
-      t >= r.levels[0].height) {
-    return -1;
-  }
-  for (size_t k = 1; k <= l; ++k) {
-    s = std::min(s / 2, r.levels[k].width - 1);
-    t = std::min(t / 2, r.levels[k].height - 1);
-  }
-  return t * r.levels[l].width + s;
-}
-
 // Each level's models as ModelParams (what Evaluate takes), made once.
 std::vector<std::vector<ModelParams>> LevelModels(const LafortuneMipResult& r) {
   std::vector<std::vector<ModelParams>> out(r.levels.size());
@@ -47,7 +32,7 @@ void AddLevelErrors(const LafortuneMipResult& r,
   AddFoldErrors(
       table, fold, only,
       [&](size_t i) -> const ModelParams* {
-        const int g = GroupOf(r, l, table.rows[i].s, table.rows[i].t);
+        const int g = LafortuneMipGroup(r, l, table.rows[i].s, table.rows[i].t);
         return g < 0 ? nullptr : &models[l][g];
       },
       se, ss, n);
@@ -75,7 +60,6 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
   const size_t levels = out.mip.levels.size();
   // Held-out errors per level, pooled over the folds.
   std::vector<double> hse(levels, 0.0), hss(levels, 0.0);
-  std::vector<int> hn(levels, 0);
   std::vector<bool> usable(levels, true);
   for (int f = 0; f < folds; ++f) {
     LafortuneMipOptions o = options;
@@ -95,7 +79,8 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
       for (const LafortuneFitResult& t : part.levels[l].texels) {
         usable[l] = usable[l] && t.report.usable;
       }
-      AddLevelErrors(part, models, l, table, fold, f, &hse[l], &hss[l], &hn[l]);
+      AddLevelErrors(part, models, l, table, fold, f, &hse[l], &hss[l],
+                     nullptr);
     }
   }
   const std::vector<std::vector<ModelParams>> models = LevelModels(out.mip);
@@ -118,10 +103,7 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
     double se = 0.0, ss = 0.0;
     int n = 0;
     AddLevelErrors(out.mip, models, l, table, fold, -1, &se, &ss, &n);
-    c.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
-    c.bic = n > 0 ? n * std::log(std::max(se, 1e-300) / n) +
-                        c.free_parameters * std::log(static_cast<double>(n))
-                  : 0.0;
+    SetTrainingScores(se, ss, n, &c);
     c.heldout_relative_rms =
         c.usable && hss[l] > 0.0 ? std::sqrt(hse[l] / hss[l]) : -1.0;
     // The lowest held-out error; on a tie the finer level.
@@ -149,7 +131,7 @@ LafortuneLevelSelection SelectLafortuneLevelHeldOut(
     for (int t = 0; t < level.height; ++t) {
       for (int s = 0; s < level.width; ++s) {
         // Level l's texel (s, t) covers level-0 texel (s << l, t << l).
-        const int g = GroupOf(out.mip, out.level, s << l, t << l);
+        const int g = LafortuneMipGroup(out.mip, out.level, s << l, t << l);
         level.texels[t * level.width + s] = out.mip.levels[out.level].texels[g];
       }
     }

@@ -242,7 +242,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     std::vector<std::vector<size_t>> next(static_cast<size_t>(w2) * h2);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
+        const int x2 = MipParent(x, w2), y2 = MipParent(y, h2);
         std::vector<size_t>& from = texel_rows[y * w + x];
         std::vector<size_t>& to = next[y2 * w2 + x2];
         to.insert(to.end(), from.begin(), from.end());
@@ -283,7 +283,7 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
       const int w2 = out.levels[l].width, h2 = out.levels[l].height;
       for (int y = 0; y < below.height; ++y) {
         for (int x = 0; x < below.width; ++x) {
-          const int x2 = std::min(x / 2, w2 - 1), y2 = std::min(y / 2, h2 - 1);
+          const int x2 = MipParent(x, w2), y2 = MipParent(y, h2);
           children[y2 * w2 + x2].push_back(
               &below.texels[y * below.width + x].params);
         }
@@ -324,6 +324,18 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count();
   return out;
+}
+
+int LafortuneMipGroup(const LafortuneMipResult& r, size_t level, int s, int t) {
+  if (level >= r.levels.size() || s < 0 || t < 0 || s >= r.levels[0].width ||
+      t >= r.levels[0].height) {
+    return -1;
+  }
+  for (size_t k = 1; k <= level; ++k) {
+    s = MipParent(s, r.levels[k].width);
+    t = MipParent(t, r.levels[k].height);
+  }
+  return t * r.levels[level].width + s;
 }
 
 ParamMipmap ToParamMipmap(const LafortuneMipResult& result,

@@ -110,6 +110,11 @@ struct LafortuneMipSummary {
 };
 LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result);
 
+// The index, in `level` of r, of the group that level-0 texel (s, t) joins
+// (MipParent per level, as FitLafortuneMip pools them); -1 when (s, t) is
+// outside level 0 or the level does not exist.
+int LafortuneMipGroup(const LafortuneMipResult& r, size_t level, int s, int t);
+
 // The result as a parameter mip map (io/lafortune_mipmap.h), what the fits
 // came to in the index's metadata.fit, and there as "selection" the report
 // of a held-out selection when given (SelectionReportJson; "" for none).

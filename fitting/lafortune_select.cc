@@ -17,12 +17,12 @@ namespace {
 // (|C|^N flat over the hemisphere), so that the model is the one with a
 // lobe fewer in disguise.
 std::string CollapsedLobe(const LafortuneParams& p) {
-  for (size_t k = 0; k < p.lobes.size(); ++k) {
-    for (int c = 0; c < 3; ++c) {
-      const double span = kLafortuneN.fit_hi - kLafortuneN.fit_lo;
-      if (p.lobes[k].n[c] - kLafortuneN.fit_lo < 1e-9 * span) {
-        return "lobes[" + std::to_string(k) + "]";
-      }
+  const double middle = 0.5 * (kLafortuneN.fit_lo + kLafortuneN.fit_hi);
+  for (const LafortuneLimit& limit : LafortuneAtSearchLimit(p)) {
+    // "lobes[K].N_c" at its lower limit.
+    const size_t dot = limit.name.find('.');
+    if (limit.name.compare(dot + 1, 2, "N_") == 0 && limit.value < middle) {
+      return limit.name.substr(0, dot);
     }
   }
   return "";
@@ -70,12 +70,8 @@ LafortuneSelection SelectLafortuneHeldOut(const MeasurementTable& table,
       int n = 0;
       AddFoldErrors(
           table, fold, -1, [&](size_t) { return &all_params; }, &se, &ss, &n);
-      c.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
-      c.bic = n > 0 ? n * std::log(std::max(se, 1e-300) / n) +
-                          c.free_parameters * std::log(static_cast<double>(n))
-                    : 0.0;
+      SetTrainingScores(se, ss, n, &c);
       double hse = 0.0, hss = 0.0;
-      int hn = 0;
       for (int f = 0; f < folds && c.usable; ++f) {
         const LafortuneFitResult part =
             FitLafortuneTable(WithoutFold(table, fold, f), o);
@@ -83,7 +79,7 @@ LafortuneSelection SelectLafortuneHeldOut(const MeasurementTable& table,
         const ModelParams part_params = part.params;
         AddFoldErrors(
             table, fold, f, [&](size_t) { return &part_params; }, &hse, &hss,
-            &hn);
+            nullptr);
       }
       c.heldout_relative_rms =
           c.usable && hss > 0.0 ? std::sqrt(hse / hss) : -1.0;

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,7 @@ void AddFoldErrors(const MeasurementTable& table, const std::vector<int>& fold,
                    double* se, double* ss, int* n) {
   for (size_t i = 0; i < table.rows.size(); ++i) {
     const TableRow& row = table.rows[i];
-    if ((only >= 0 && fold[i] != only) || !(row.wi.z > 0.0 && row.wo.z > 0.0)) {
-      continue;
-    }
+    if ((only >= 0 && fold[i] != only) || !IsReflectionRow(row)) continue;
     const ModelParams* model = model_of(i);
     if (model == nullptr) continue;
     const glm::dvec3 m = Evaluate(*model, row.wi, row.wo, table.quantity);
@@ -43,9 +42,14 @@ void AddFoldErrors(const MeasurementTable& table, const std::vector<int>& fold,
       const double d = m[c] - row.value[c];
       *se += d * d;
       *ss += row.value[c] * row.value[c];
-      ++*n;
+      if (n != nullptr) ++*n;
     }
   }
+}
+
+void SetTrainingScores(double se, double ss, int n, CandidateReport* c) {
+  c->relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+  c->bic = n > 0 ? BicOfRss(se, n, c->free_parameters) : 0.0;
 }
 
 std::vector<int> RequireLightFolds(const MeasurementTable& table, int folds,

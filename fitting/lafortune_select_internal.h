@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fitting/lafortune_samples.h"
+#include "fitting/model_selection.h"
 #include "io/table.h"
 #include "models/evaluate.h"
 
@@ -31,10 +32,15 @@ MeasurementTable WithoutFold(const MeasurementTable& table,
 // Adds the squared errors and squared values over the reflection rows
 // (wi.z, wo.z > 0) of fold `only` (every fold: only < 0) of the model
 // model_of(row) (null: the row is skipped), in the table's quantity and
-// channels, and counts them in *n.
+// channels, and counts them in *n (may be null).
 void AddFoldErrors(const MeasurementTable& table, const std::vector<int>& fold,
                    int only,
                    const std::function<const ModelParams*(size_t)>& model_of,
                    double* se, double* ss, int* n);
+
+// A candidate's training scores from its squared errors se, squared
+// values ss and count n over every row (AddFoldErrors with only < 0):
+// relative_rms and, with c->free_parameters set, the BIC (BicOfRss).
+void SetTrainingScores(double se, double ss, int n, CandidateReport* c);
 
 }  // namespace clothfit

@@ -19,9 +19,16 @@ double Bic(const FitReport& r, bool sigma_known) {
   const int k = FreeCount(r);
   const double n = std::max(1, r.residuals);
   if (sigma_known) return 2.0 * r.final_cost + k * std::log(n);
-  const double rss = std::max(2.0 * r.final_cost, 1e-300);
-  return n * std::log(rss / n) + k * std::log(n);
+  return BicOfRss(2.0 * r.final_cost, n, k);
 }
+
+}  // namespace
+
+double BicOfRss(double rss, double n, int k) {
+  return n * std::log(std::max(rss, 1e-300) / n) + k * std::log(n);
+}
+
+namespace {
 
 CandidateReport Describe(const std::string& description, int samples,
                          const FitReport& r, bool sigma_known,

@@ -45,6 +45,10 @@ struct SelectionReport {
   std::string reason;
 };
 
+// The BIC with the noise level unknown, n ln(RSS / n) + k ln n (RSS
+// floored at 1e-300): k free parameters, n residuals.
+double BicOfRss(double rss, double n, int k);
+
 std::string SelectionReportText(const SelectionReport& report);
 std::string SelectionReportJson(const SelectionReport& report);
 

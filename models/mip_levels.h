@@ -14,6 +14,13 @@ inline int MipLevelSize(int base, int level) {
   return std::max(1, base >> level);
 }
 
+// The texel of the next level that texel x of a level joins, along a side
+// of `next_size` texels there: x / 2, an odd last texel joining the group
+// before it (ROUND_DOWN).
+inline int MipParent(int x, int next_size) {
+  return std::min(x / 2, next_size - 1);
+}
+
 // The number of levels of a width x height base (down to 1 x 1).
 inline int MipLevelCount(int width, int height) {
   int levels = 1;
