@@ -163,7 +163,8 @@ void WarnNotReflection(const FitReport& report, const std::string& model) {
 int FinishFit(const FitReport& report, const std::vector<double>& truth,
               const std::string& out_path,
               const std::function<void(const std::string&)>& write,
-              const std::string& preface) {
+              const std::string& preface,
+              const std::string& identifiability_hint) {
   if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
   std::cout << preface << FitReportText(report, truth);
   if (!report.usable) {
@@ -174,12 +175,7 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
   write(FitReportJson(report));
   std::cout << "wrote " << out_path << "\n";
   if (!report.identifiability.empty()) {
-    // A fit without --fix (Lafortune) says in parentheses what to do.
-    const bool has_hint = report.identifiability.find('(') != std::string::npos;
-    std::cerr << "warning: " << report.identifiability
-              << (has_hint ? ""
-                           : " (the data do not determine them; fix them "
-                             "with --fix)")
+    std::cerr << "warning: " << report.identifiability << identifiability_hint
               << "\n";
   }
   if (!report.converged) {
@@ -207,7 +203,9 @@ int FinishFit(const CommandArgs& args, const ModelParams& fitted,
         }
         WriteParamFile(ParamFile{fitted, fit_json}, args.Get("out"));
       },
-      extras.text);
+      extras.text,
+      // A Lafortune fit has no --fix; its messages say what to do.
+      std::holds_alternative<LafortuneModel>(fitted) ? "" : kFixHint);
 }
 
 namespace {

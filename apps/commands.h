@@ -92,10 +92,15 @@ void WarnNotReflection(const FitReport& report, const std::string& model);
 // with the "fit" object (JSON text) and says so; warns about parameters the
 // data cannot determine. Returns 0, or 1 when the fit is unusable (nothing
 // written) or did not converge.
+// identifiability_hint follows report.identifiability in the warning: what
+// to do about it ("" where the message says so itself).
+inline constexpr char kFixHint[] =
+    " (the data do not determine them; fix them with --fix)";
 int FinishFit(const FitReport& report, const std::vector<double>& truth,
               const std::string& out_path,
               const std::function<void(const std::string&)>& write,
-              const std::string& preface = "");
+              const std::string& preface = "",
+              const std::string& identifiability_hint = kFixHint);
 
 // What a fit adds besides its FitReport: text printed before the summary,
 // and (key, JSON text) entries added to the "fit" object.
