@@ -234,7 +234,9 @@ int RunFit(int argc, char** argv) {
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "
       "--preset NAME] --out P.json [options]\n       clothfit fit --model "
-      "slab --data T.csv[,D.csv,...] [--init P.json] [--per-channel-tau] "
+      "auto --data T.csv [--fit-scale] [--folds K] --out P.json [options]\n"
+      "       clothfit fit --model slab --data T.csv[,D.csv,...] [--init "
+      "P.json] [--per-channel-tau] "
       "--out P.json [options]\n       clothfit fit --model "
       "lafortune ... (see clothfit fit --model lafortune --help)\n       "
       "clothfit fit --model holes ... (see clothfit fit --model holes "
@@ -250,7 +252,9 @@ int RunFit(int argc, char** argv) {
       "object say whether the data are within\nthe model's regime "
       "(docs/slab.md).\nExit status 1 when "
       "the fit reaches no usable solution or does not converge.");
-  args.Option("model", "M", "thread, cloth, slab (or lafortune, holes)");
+  args.Option("model", "M",
+              "thread, cloth, slab, auto (or lafortune, holes); auto: picks "
+              "the family by held-out error (docs/fitting.md)");
   args.Option("data", "T.csv",
               "measurement table (SPEC §2); slab: A.csv,B.csv,... ");
   args.Option("init", "P.json", "initial parameters");
@@ -258,6 +262,14 @@ int RunFit(int argc, char** argv) {
   args.Option("out", "P.json", "result parameter file");
   args.Option("fix", "A,B", "parameters held fixed (e.g. eta,kd or albedo)");
   args.Option("free", "A,B", "free only these parameters");
+  args.Option("also-free", "A,B",
+              "cloth: free these on top of the free set, e.g. the weave's "
+              "freedoms rotation_deg,offsets_deg,diffuse,coverage "
+              "(docs/fitting.md)");
+  args.Option("design-points", "N",
+              "cloth with its geometry or eta free: weave geometries of the "
+              "start search's space-filling design, 0 to 100000 (default: " +
+                  std::to_string(ClothFitOptions().design_points) + ")");
   AddSolverOptions(&args, SolverOptions(), true,
                    "threads for residual evaluation");
   args.Option("starts", "N",
@@ -276,11 +288,21 @@ int RunFit(int argc, char** argv) {
             "(reported as 'scale')");
   args.Flag("per-channel-tau", "slab: one tau per channel (r, g, b)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
+  args.Option("folds", "K",
+              "auto: folds of the held-out selection over rows, 2 to 100 "
+              "(default: 5)");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string model = args.Required("model");
+  for (const char* cloth_only : {"also-free", "design-points"}) {
+    if (args.Has(cloth_only) && model != "cloth") {
+      args.Fail(std::string("--") + cloth_only + " is for the cloth model");
+    }
+  }
   CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args, true);
   if (model == "slab") return RunFitSlab(args, solver);
+  if (model == "auto") return RunFitAuto(args, solver);
+  if (args.Has("folds")) args.Fail("--folds is for --model auto");
   if (args.Has("per-channel-tau")) args.Fail("--per-channel-tau is for slab");
   const MeasurementTable table = ReadDataOption(args);
   const std::vector<std::string> fix =
@@ -344,6 +366,15 @@ int RunFit(int argc, char** argv) {
     options.fix = fix;
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
+    options.also_free =
+        SplitList(args.Has("also-free") ? args.Get("also-free") : "");
+    if (args.Has("design-points")) {
+      const long n = args.GetInt("design-points");
+      if (n < 0 || n > 100000) {
+        args.Fail("option '--design-points': must be in [0, 100000]");
+      }
+      options.design_points = static_cast<int>(n);
+    }
     if (starts > 0) options.solve_starts = starts;
     std::vector<double> truth_values;
     if (truth && std::holds_alternative<ClothParams>(truth->params) &&
@@ -365,7 +396,7 @@ int RunFit(int argc, char** argv) {
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }
   args.Fail(
-      "option '--model': expected thread, cloth, slab, lafortune or "
+      "option '--model': expected thread, cloth, slab, auto, lafortune or "
       "holes, got '" +
       model + "'");
 }

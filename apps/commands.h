@@ -118,4 +118,7 @@ int FinishFit(const CommandArgs& args, const ModelParams& fitted,
 // fit --model slab, after RunFit parsed the options (apps/cmd_fit_slab.cc).
 int RunFitSlab(const CommandArgs& args, const SolverOptions& solver);
 
+// fit --model auto, after RunFit parsed the options (apps/cmd_fit_auto.cc).
+int RunFitAuto(const CommandArgs& args, const SolverOptions& solver);
+
 }  // namespace clothfit

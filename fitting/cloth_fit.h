@@ -1,8 +1,10 @@
 // Fits the cloth patch (Sadeghi et al. 2013 eq. 5-13) to a reflection table:
-// per thread albedo, kd, gamma_s_deg, gamma_v_deg by default; eta, coverage
-// and the magnitude of the tangent offsets (a scale on all of a thread's
-// offsets, keeping the weave's shape) on request. The weave (threads,
-// directions, tangent samples) comes from the initial parameters.
+// per thread albedo, kd, gamma_s_deg, gamma_v_deg by default (the paper's
+// model); on request eta, the coverages (summing to at most 1), the
+// tangent offsets (each, or a scale on all of a thread's keeping the
+// weave's shape), the weave's rotation about the normal and a Lambertian
+// term (models/microcylinder_cloth.h). The weave (threads, directions,
+// number of tangent samples) comes from the initial parameters.
 #pragma once
 
 #include <string>
@@ -21,12 +23,23 @@ struct ClothFitOptions {
   // "offset_scale"; a bare NAME applies to every thread.
   std::vector<std::string> fix;
   std::vector<std::string> free_only;
+  // Freed on top of the free set (the default one, or free_only): e.g.
+  // the weave's freedoms "rotation_deg", "offsets_deg", "diffuse",
+  // "coverage". `fix` wins over both.
+  std::vector<std::string> also_free;
   // Multi-start around the initial parameters: each thread's two widths
   // scaled by 0.5, 1 or 2 (3^threads combinations), each with albedo and kd
   // solved in closed form (the model is linear in A and A kd); ranked by
   // cost, the solver runs from the best `solve_starts`.
   bool multi_start = true;
   int solve_starts = 2;
+  // With the weave's geometry (rotation, offsets, offset_scale, coverage)
+  // or eta free: the points of a space-filling design over them besides
+  // the initial weave (fitting/cloth_search.h), and the multi-start's
+  // stopping rule (stop once the best cost was reached this many times;
+  // solve_starts is then the most solves).
+  int design_points = 128;
+  int stop_after_hits = 3;
   // Every thread shares thread 0's albedo (one colour for the fabric).
   bool shared_albedo = false;
   // Data on an arbitrary scale: fit a factor s on the model as well

@@ -104,6 +104,7 @@ std::string FitReportJson(const FitReport& r) {
   j["rows"] = r.rows;
   if (r.rows_not_used > 0) j["rows_not_used"] = r.rows_not_used;
   j["starts"] = r.starts;
+  if (!r.search.empty()) j["search"] = r.search;
   if (!r.noise_model.empty()) {
     nlohmann::ordered_json noise;
     noise["model"] = r.noise_model;
@@ -186,6 +187,7 @@ std::string FitReportText(const FitReport& r,
                   r.minimised.c_str(), r.minimised_rms);
     out << line;
   }
+  if (!r.search.empty()) out << "starts: " << r.search << "\n";
   if (r.alternations > 0) {
     std::snprintf(line, sizeof(line),
                   "%d alternation(s); last mean relative change of the lookup "
@@ -251,6 +253,7 @@ std::string FitReportText(const FitReport& r,
     } else if (p.at_bound) {
       out << "  (at bound)";
     }
+    if (p.no_effect) out << "  (no effect)";
     out << "\n";
   }
   if (!r.identifiability.empty()) out << r.identifiability << "\n";

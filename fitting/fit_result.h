@@ -56,6 +56,9 @@ struct ParameterReport {
   double lower = 0.0, upper = 0.0;
   bool at_bound = false;         // a free parameter ended on its bound
   bool at_search_limit = false;  // ... on a bound that only limits the search
+  // Free, and changes no residual at the solution (its Jacobian column is
+  // zero next to the others): the data say nothing about it there.
+  bool no_effect = false;
 };
 
 struct FitReport {
@@ -99,6 +102,9 @@ struct FitReport {
   // reflection-only model's transmission rows); 0 for most fits.
   int rows_not_used = 0;
   int starts = 1;  // multi-start: how many solves were run
+  // How the starts were found and why the multi-start ended, in words
+  // ("" for a plain multi-start over every start).
+  std::string search;
   // A lookup-table fit: the views with an entry of their own, of all.
   int lut_views_fitted = 0, lut_views = 0;
   // Of those, the views whose T was lowered to the energy bound (T times

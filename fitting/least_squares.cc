@@ -138,6 +138,7 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     }
   }
   std::vector<double> stddev(x.size(), -1.0), sandwich(x.size(), -1.0);
+  std::vector<bool> no_effect(x.size(), false);
   const int n = static_cast<int>(free_index.size());
   if (n > 0) {
     ceres::CRSMatrix crs;
@@ -147,6 +148,16 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     for (int r = 0; r < crs.num_rows; ++r) {
       for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
         j(r, crs.cols[k]) = crs.values[k];
+      }
+    }
+    // Columns that are zero next to the others: entries that change no
+    // residual at the solution (a thread of coverage 0, the volume width
+    // at kd = 1).
+    if (j.cols() == n && j.rows() > 0) {
+      const Eigen::VectorXd norms = j.colwise().norm();
+      const double largest = norms.maxCoeff();
+      for (int c = 0; c < n; ++c) {
+        no_effect[free_index[c]] = !(norms[c] > 1e-12 * largest);
       }
     }
     if (j.cols() != n) {
@@ -185,6 +196,7 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     // On the solver's bound (a reparameterised entry's too).
     p.at_bound = spec.free && OnFitBound(x[i], spec.lower, spec.upper);
     p.at_search_limit = p.at_bound && !spec.physical_bounds;
+    p.no_effect = no_effect[i];
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];
     report->parameters.push_back(p);
@@ -200,6 +212,15 @@ bool NameMatches(const std::string& pattern, const std::string& name) {
   // "albedo" (or "threads[0].albedo") stands for the three channels.
   for (const char* channel : {"_r", "_g", "_b"}) {
     if (pattern + channel == name || pattern + channel == last) return true;
+  }
+  // "offsets_deg" (or "threads[0].offsets_deg") for each of an array's
+  // entries "offsets_deg[k]".
+  const size_t bracket = name.rfind('[');
+  if (bracket != std::string::npos && name.back() == ']' &&
+      (dot == std::string::npos || bracket > dot)) {
+    const std::string array = name.substr(0, bracket);
+    const std::string array_last = last.substr(0, last.rfind('['));
+    if (pattern == array || pattern == array_last) return true;
   }
   return false;
 }
@@ -235,6 +256,11 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
     Mark(free_only, "--free", true, specs);
   }
   Mark(fix, "--fix", false, specs);
+}
+
+void FreeAlso(const std::vector<std::string>& names,
+              std::vector<ParameterSpec>* specs) {
+  Mark(names, "--also-free", true, specs);
 }
 
 std::string NonFiniteRow(const LeastSquaresProblem& lsq,
@@ -318,7 +344,22 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     best.residuals = summary.num_residuals;
     best_x = x;
   };
+  // The stopping rule's count: solves whose cost is within kSameBasin of
+  // the best.
+  constexpr double kSameBasin = 1e-3;
+  std::vector<double> costs;
+  auto hits = [&] {
+    return std::count_if(costs.begin(), costs.end(), [&](double c) {
+      return c <= best.final_cost * (1.0 + kSameBasin) + 1e-300;
+    });
+  };
+  size_t solved = 0;
   for (size_t s = 0; s < starts.size(); ++s) {
+    if (lsq.stop_after_hits > 0 && best.usable &&
+        hits() >= lsq.stop_after_hits) {
+      break;
+    }
+    ++solved;
     if (options.progress) {
       options.progress("start " + std::to_string(s + 1) + " of " +
                        std::to_string(starts.size()));
@@ -327,6 +368,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     const ceres::Solver::Summary summary = solve(&x);
     const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
+    if (usable) costs.push_back(summary.final_cost);
     if (usable && summary.final_cost < best.final_cost) {
       best = FitReport();
       best.usable = true;
@@ -347,6 +389,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       }
     }
   }
+  const long reached = best.usable ? hits() : 0;  // before reweighting
   // Weights that depend on the model (relative noise): solve again with
   // the weights of the best solution until they settle (iteratively
   // reweighted least squares; a pass changes x by O(F) of its first
@@ -372,7 +415,19 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       if (change < 1e-9) break;
     }
   }
-  best.starts = static_cast<int>(starts.size());
+  best.starts = static_cast<int>(solved);
+  if (lsq.stop_after_hits > 0) {
+    std::ostringstream rule;
+    rule << solved << " of " << starts.size()
+         << " starts solved; the best cost was reached " << reached
+         << " time(s)"
+         << (reached >= lsq.stop_after_hits
+                 ? " (the rule: stop at " +
+                       std::to_string(lsq.stop_after_hits) + ")"
+                 : ", fewer than the " + std::to_string(lsq.stop_after_hits) +
+                       " the rule asks: more starts may find a lower cost");
+    best.search = rule.str();
+  }
   best.iterations = total_iterations;
   if (!best_x.empty()) {
     // The covariance is that of the problem solved, robust loss included.
@@ -394,8 +449,11 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                      " free parameters (give more rows, or fix some with "
                      "--fix)";
     }
+    // A free parameter on a search limit that changes no residual there
+    // (ParameterReport::no_effect) is undetermined, not pushing outward:
+    // it is named as not identifiable and does not stop convergence.
     for (const ParameterReport& p : best.parameters) {
-      if (!p.at_search_limit || !best.converged) continue;
+      if (!p.at_search_limit || p.no_effect || !best.converged) continue;
       best.converged = false;
       std::ostringstream msg;
       msg << p.name << " stopped at its search limit " << p.value

@@ -87,6 +87,12 @@ struct LeastSquaresProblem {
   // standard deviations by the delta method, G Cov G^T with G = d
   // reported / dx over the free entries (central differences).
   std::function<std::vector<double>(const std::vector<double>& x)> reported;
+  // Multi-start stopping rule: when > 0, the starts (ranked best first by
+  // their caller) are solved in order until the lowest final cost so far
+  // has been reached by this many solves (costs within a relative 1e-3 of
+  // it: the same basin), and the rest are skipped. FitReport::starts
+  // counts the solves run and FitReport::search says how the rule ended.
+  int stop_after_hits = 0;
 };
 
 // Solves from each start in `starts` (each a full x), keeps the lowest cost,
@@ -105,6 +111,12 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& problem,
 void ApplyFreeFix(const std::vector<std::string>& fix,
                   const std::vector<std::string>& free_only,
                   std::vector<ParameterSpec>* specs);
+
+// Frees the entries `names` match (as ApplyFreeFix's), on top of the
+// free set; throws InputError naming --also-free for a name matching
+// nothing.
+void FreeAlso(const std::vector<std::string>& names,
+              std::vector<ParameterSpec>* specs);
 
 // The first pair of `lsq.predict` at x whose model value, or its
 // difference from the data, is not finite, named by its table line,

@@ -100,10 +100,12 @@ std::string SelectionReportText(const SelectionReport& r) {
     out << "model selection (tolerance: relative rms <= " << r.tolerance
         << ")\n";
   }
-  char line[256];
-  std::snprintf(line, sizeof(line), "  %-34s %6s %8s %12s %12s%s\n",
+  bool timed = false;
+  for (const CandidateReport& c : r.candidates) timed = timed || c.seconds >= 0;
+  char line[320];
+  std::snprintf(line, sizeof(line), "  %-50s %6s %8s %12s %12s%s%s\n",
                 "candidate", "free", "samples", "rel. rms", "BIC",
-                heldout ? "     held-out" : "");
+                heldout ? "     held-out" : "", timed ? "        s" : "");
   out << line;
   for (size_t i = 0; i < r.candidates.size(); ++i) {
     const CandidateReport& c = r.candidates[i];
@@ -111,15 +113,18 @@ std::string SelectionReportText(const SelectionReport& r) {
     if (heldout) {
       std::snprintf(held, sizeof(held), " %12.4g", c.heldout_relative_rms);
     }
+    char secs[32] = "";
+    if (timed) std::snprintf(secs, sizeof(secs), " %8.2f", c.seconds);
     const std::string samples =
         c.samples < 0 ? std::string("-") : std::to_string(c.samples);
-    std::snprintf(line, sizeof(line), "%s %-34s %6d %8s %12.4g %12.6g%s%s\n",
+    std::snprintf(line, sizeof(line), "%s %-50s %6d %8s %12.4g %12.6g%s%s%s\n",
                   static_cast<int>(i) == r.chosen ? "*" : " ",
                   c.description.c_str(), c.free_parameters, samples.c_str(),
-                  c.relative_rms, c.bic, held,
-                  !c.usable           ? "  (failed)"
-                  : c.meets_tolerance ? "  meets"
-                                      : "");
+                  c.relative_rms, c.bic, held, secs,
+                  !c.usable               ? "  (failed)"
+                  : c.meets_tolerance     ? "  meets"
+                  : timed && !c.converged ? "  (not converged)"
+                                          : "");
     out << line;
     if (!c.note.empty()) out << "    (" << c.note << ")\n";
   }
@@ -145,6 +150,10 @@ std::string SelectionReportJson(const SelectionReport& r) {
     }
     e["usable"] = c.usable;
     e["meets_tolerance"] = c.meets_tolerance;
+    if (c.seconds >= 0.0) {
+      e["seconds"] = c.seconds;
+      e["converged"] = c.converged;
+    }
     if (!c.note.empty()) e["note"] = c.note;
     list.push_back(e);
   }

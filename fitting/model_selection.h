@@ -33,6 +33,10 @@ struct CandidateReport {
   double heldout_relative_rms = -1.0;
   bool usable = false;
   bool meets_tolerance = false;
+  // The whole-table fit's wall time and whether it converged (< 0: not
+  // recorded; fitting/fabric_select.h records both).
+  double seconds = -1.0;
+  bool converged = false;
   // Why a usable candidate was not eligible (e.g. "lobes[1] collapsed"),
   // or "".
   std::string note;

@@ -135,6 +135,7 @@ class Search {
       p.kd = 1.0;
       t.r = add(minus_surface(problem.contribution(j, p)));
     }
+    if (!problem.diffuse_basis.empty()) diffuse_ = add(problem.diffuse_basis);
     gram_ = std::make_unique<Gram>(*problem.table, *problem.weighting, vectors);
   }
 
@@ -164,10 +165,13 @@ class Search {
     for (size_t j = 0; j < n; ++j) {
       if (a_index[j] >= 0 && problem.kd_free[j]) b_index[j] = m++;
     }
+    const bool diffuse = diffuse_ != kNone;
+    const int d_index = diffuse && problem.diffuse_free ? m++ : -1;
     const int s_index = problem.fit_scale ? m++ : -1;
 
     point->threads = problem.init;
     point->scale = 1.0;
+    point->diffuse = problem.init_diffuse;
     std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)),
         b_out(n, glm::dvec3(0.0));
     double scale_sum = 0.0;
@@ -192,6 +196,11 @@ class Search {
           column[b_index[j]].push_back({t.r, 1.0});
           column[b_index[j]].push_back({p, -1.0});
         }
+      }
+      if (d_index >= 0) {
+        column[d_index].push_back({diffuse_, 1.0});
+      } else if (diffuse) {
+        constant.push_back({diffuse_, problem.init_diffuse[c]});
       }
       if (s_index >= 0) column[s_index] = constant;
       std::vector<double> ata(m * m), atb(m);
@@ -224,6 +233,11 @@ class Search {
         if (a_index[j] >= 0) a_out[j][c] = x[a_index[j]] / s;
         if (b_index[j] >= 0) b_out[j][c] = x[b_index[j]] / s;
       }
+      if (d_index >= 0) {  // one channel: g and b follow r
+        for (int k = c; k < (channels == 1 ? 3 : c + 1); ++k) {
+          point->diffuse[k] = std::min(x[d_index] / s, 1.0);
+        }
+      }
     }
     if (s_index >= 0) point->scale = scale_sum / channels;
     for (size_t j = 0; j < n; ++j) {
@@ -232,7 +246,8 @@ class Search {
       tp.gamma_v_deg = threads_[j].gamma_v[choice[j].second];
       if (a_index[j] < 0) continue;
       for (int c = 0; c < 3; ++c) {
-        tp.albedo[c] = std::min(a_out[j][std::min(c, channels - 1)], 1e3);
+        tp.albedo[c] =
+            std::min(a_out[j][std::min(c, channels - 1)], kThreadAlbedo.fit_hi);
       }
       if (b_index[j] >= 0) {  // one kd for all channels
         double a = 0.0, b = 0.0;
@@ -255,6 +270,8 @@ class Search {
                          point->scale * tp.albedo[c] * (1.0 - tp.kd)});
         model.push_back({t.r, point->scale * tp.albedo[c] * tp.kd});
       }
+      if (diffuse)
+        model.push_back({diffuse_, point->scale * point->diffuse[c]});
       cost += Dot(*gram_, c, model, model) - 2.0 * DotY(*gram_, c, model) +
               gram_->YY(c);
     }
@@ -263,8 +280,10 @@ class Search {
   }
 
  private:
+  static constexpr size_t kNone = static_cast<size_t>(-1);
   const StartSearchProblem& problem_;
   std::vector<ThreadVectors> threads_;
+  size_t diffuse_ = kNone;  // the Lambertian basis vector, if any
   std::unique_ptr<Gram> gram_;
 };
 

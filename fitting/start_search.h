@@ -37,12 +37,20 @@ struct StartSearchProblem {
   std::vector<bool> kd_free, gamma_s_free, gamma_v_free, albedo_free;
   bool shared_albedo = false;  // one albedo for every thread
   bool fit_scale = false;      // a free factor on the whole model
+  // A Lambertian term (the cloth's diffuse, models/microcylinder_cloth.h):
+  // its value per row for diffuse 1 (empty: no such term), and its
+  // amplitude: solved with the other linear entries when free (in [0, 1]),
+  // else init_diffuse.
+  RowValues diffuse_basis;
+  bool diffuse_free = false;
+  glm::dvec3 init_diffuse{0.0};
 };
 
 struct StartPoint {
   std::vector<ThreadParams> threads;
   double scale = 1.0;
-  double cost = 0.0;  // sum of squared weighted residuals
+  glm::dvec3 diffuse{0.0};  // StartSearchProblem::diffuse_basis's amplitude
+  double cost = 0.0;        // sum of squared weighted residuals
 };
 
 // The `keep` best distinct starting points (some width a factor of 2 or

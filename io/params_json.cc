@@ -265,6 +265,12 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
       c.threads.push_back(ReadClothThread(
           threads[j], name, "threads[" + std::to_string(j) + "]"));
     }
+    // The weave's optional freedoms (models/microcylinder_cloth.h): absent
+    // keys are the paper's model.
+    if (r.Has(kClothRotation.name)) {
+      c.rotation_deg = r.Number(kClothRotation.name);
+    }
+    if (r.Has(kClothDiffuse.name)) c.diffuse = r.Rgb(kClothDiffuse.name);
     if (r.Has(kModelScale.name)) c.scale = r.Number(kModelScale.name);
     const std::string e = ValidateClothParams(c);
     if (!e.empty()) FailValidation(name, e);
@@ -419,6 +425,8 @@ std::string FormatParamFile(const ParamFile& file) {
       threads.push_back(t);
     }
     j["threads"] = threads;
+    if (c.rotation_deg != 0.0) j[kClothRotation.name] = c.rotation_deg;
+    if (c.diffuse != glm::dvec3(0.0)) j[kClothDiffuse.name] = rgb(c.diffuse);
     if (c.scale != 1.0) j[kModelScale.name] = c.scale;
   }
   if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);

@@ -52,11 +52,9 @@ inline double LogisticCdf(double x, double mu, double s) {
   return 1.0 / (1.0 + std::exp(-(x - mu) / s));
 }
 
-inline Cone MakeCone(const ClothThread& th, double offset_deg,
-                     const glm::dvec3& wo) {
-  const glm::dvec3 d = th.direction == ThreadDirection::kU
-                           ? glm::dvec3(1.0, 0.0, 0.0)
-                           : glm::dvec3(0.0, 1.0, 0.0);
+inline Cone MakeCone(const ClothThread& th, double rotation_deg,
+                     double offset_deg, const glm::dvec3& wo) {
+  const glm::dvec3 d = ThreadAxis(th.direction, rotation_deg);
   const glm::dvec3 z(0.0, 0.0, 1.0);
   const double psi = Radians(offset_deg);
   Cone c;
@@ -110,7 +108,9 @@ inline double ClothWiPdf(const ClothParams& cloth, const glm::dvec3& wo,
     if (!(weight > 0.0)) continue;
     for (double offset : th.offsets_deg) {
       pdf += weight * cloth_sampling_detail::ConePdf(
-                          cloth_sampling_detail::MakeCone(th, offset, wo), wi);
+                          cloth_sampling_detail::MakeCone(
+                              th, cloth.rotation_deg, offset, wo),
+                          wi);
     }
   }
   return pdf;
@@ -145,7 +145,9 @@ inline ClothSample SampleClothWi(const ClothParams& cloth, const glm::dvec3& wo,
     }
     if (chosen != nullptr) {
       out.wi = cloth_sampling_detail::SampleCone(
-          cloth_sampling_detail::MakeCone(*chosen, chosen_offset, wo), u1, u2);
+          cloth_sampling_detail::MakeCone(*chosen, cloth.rotation_deg,
+                                          chosen_offset, wo),
+          u1, u2);
     }
   }
   out.pdf = ClothWiPdf(cloth, wo, out.wi);

@@ -14,6 +14,18 @@
 //   Q   = sum_j a_j W_j + (1 - sum_j a_j) wi.z                   (eq. 12-13)
 //   rho = sum_j a_j S_j / Q   (0 where Q <= 0),  f = rho / wi.z.
 // Reflection only: rho = 0 unless wi.z > 0 and wo.z > 0.
+//
+// Two optional freedoms that are not in the paper (both 0 by default, which
+// is the paper's model):
+// - rotation_deg: the weave turned about the normal, so that the warp runs
+//   along (cos r, sin r, 0) and the weft along (-sin r, cos r, 0). A
+//   measured sample's orientation on the gonioreflectometer is often
+//   unknown (CUReT's is).
+// - diffuse: a Lambertian term f_d = diffuse / pi added outside the
+//   normalisation Q (rho += diffuse wi.z / pi): light that the threads'
+//   lobes do not describe (multiple scattering between fibres, loose
+//   fibres, the backing). It is energy conserving when diffuse plus the
+//   threads' own directional albedo stays <= 1.
 #pragma once
 
 #include <cmath>
@@ -91,6 +103,30 @@ inline std::string ValidateTangentCurve(const TangentCurve& c) {
   return msg.str();
 }
 
+// The weave's own entries (models/params.h).
+inline constexpr ParamInfo kClothRotation = {
+    "rotation_deg",
+    "degrees",
+    "rotation of the weave about the normal (warp along (cos r, sin r, 0))",
+    {-360.0, 360.0},
+    -360.0,
+    360.0,
+    false,
+    {0.0},
+    "clothfit: a measured sample's unknown orientation",
+    1};
+inline constexpr ParamInfo kClothDiffuse = {
+    "diffuse",
+    "unitless",
+    "albedo of a Lambertian term outside the normalisation (f += diffuse/pi)",
+    {0.0, 1.0},
+    0.0,
+    1.0,
+    true,
+    {0.0, 0.0, 0.0},
+    "clothfit: what the threads' lobes leave (fibre interreflection)",
+    3};
+
 // The parameter table of a weave's threads (models/params.h); each thread
 // also has the thread entries of models/microcylinder_thread.h.
 inline constexpr ParamInfo kClothCoverage = {
@@ -135,7 +171,9 @@ struct ClothThreadT {
 template <typename T>
 struct ClothParamsT {
   std::vector<ClothThreadT<T>> threads;
-  T scale = kModelScale.Default<T>();  // kModelScale
+  T rotation_deg = kClothRotation.Default<T>();     // kClothRotation
+  Vec3<T> diffuse = kClothDiffuse.DefaultRgb<T>();  // kClothDiffuse
+  T scale = kModelScale.Default<T>();               // kModelScale
 };
 using ClothThread = ClothThreadT<double>;
 using ClothParams = ClothParamsT<double>;
@@ -172,6 +210,11 @@ inline std::string ValidateClothParams(const ClothParams& c) {
     msg << "threads: coverages sum to " << sum << ", must be <= 1";
     return msg.str();
   }
+  std::string e = CheckParam(kClothRotation, c.rotation_deg);
+  for (int k = 0; k < 3 && e.empty(); ++k) {
+    e = CheckParam(kClothDiffuse, c.diffuse[k]);
+  }
+  if (!e.empty()) return e;
   return CheckParam(kModelScale, c.scale);
 }
 
@@ -197,16 +240,28 @@ struct TangentSample {
   G reweight = G(0.0);  // P: the sample's term of W_j (eq. 12)
 };
 
-// The sample at tangent offset `offset_deg` of a thread along `direction`.
+// The direction of a thread in the surface frame: +x (warp, "u") or +y
+// (weft, "v"), turned by the weave's rotation about the normal.
+template <typename G>
+Vec3<G> ThreadAxis(ThreadDirection direction, const G& rotation_deg) {
+  using std::cos;
+  using std::sin;
+  const G r = Radians(rotation_deg);
+  const G c = cos(r), s = sin(r);
+  return direction == ThreadDirection::kU ? Vec3<G>(c, s, G(0.0))
+                                          : Vec3<G>(-s, c, G(0.0));
+}
+
+// The sample at tangent offset `offset_deg` of a thread along `direction`
+// in a weave turned by `rotation_deg`.
 template <typename G>
 TangentSample<G> ComputeTangentSample(ThreadDirection direction,
+                                      const G& rotation_deg,
                                       const G& offset_deg, const Vec3<G>& wi,
                                       const Vec3<G>& wo) {
   using std::cos;
   using std::sin;
-  const Vec3<G> d = direction == ThreadDirection::kU
-                        ? Vec3<G>(G(1.0), G(0.0), G(0.0))
-                        : Vec3<G>(G(0.0), G(1.0), G(0.0));
+  const Vec3<G> d = ThreadAxis(direction, rotation_deg);
   const Vec3<G> z(G(0.0), G(0.0), G(1.0));
   const G psi = Radians(offset_deg);
   const G c = cos(psi), s = sin(psi);
@@ -268,8 +323,9 @@ struct ClothNormalisation {
 };
 
 // rho from the samples of every thread (eq. 11-13): sum_j a_j S_j / Q
-// (ClothNormalisation); cloth gives the coverages and
-// scattering parameters (its offsets are not read). ClothRho computes the
+// (ClothNormalisation), plus the Lambertian term diffuse wi.z / pi; cloth
+// gives the coverages, scattering parameters and diffuse (its offsets and
+// rotation are not read: they made the samples). ClothRho computes the
 // samples on the fly; a fit with fixed directions and offsets passes samples
 // it computed once.
 template <typename T, typename G, typename Samples>
@@ -286,9 +342,10 @@ Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
     sum += s_j * th.coverage;
     normalisation.Add(th.coverage, T(w_j));
   }
+  const Vec3<T> diffuse = cloth.diffuse * T(wi_z / kPi);
   const T q = normalisation.Q(wi_z);
-  if (!(q > T(0.0))) return zero;
-  return sum / q;
+  if (!(q > T(0.0))) return diffuse;
+  return sum / q + diffuse;
 }
 
 // Cosine-weighted BRDF rho(wi, wo) = f |wi.z| of a cloth patch, per channel.
@@ -305,7 +362,8 @@ Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
     }
     TangentSample<T> Get(size_t j, int k) const {
       const ClothThreadT<T>& th = cloth.threads[j];
-      return ComputeTangentSample(th.direction, th.offsets_deg[k], wi, wo);
+      return ComputeTangentSample(th.direction, cloth.rotation_deg,
+                                  th.offsets_deg[k], wi, wo);
     }
     ThreadLobes<T> Lobes(size_t, int, const TangentSample<T>& sample,
                          const ThreadParamsT<T>& params) const {

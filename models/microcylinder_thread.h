@@ -78,7 +78,7 @@ inline constexpr ParamInfo kThreadAlbedo = {
     "volume-scattering albedo per channel",
     {0.0, kInfinity},
     0.0,
-    1e3,
+    1.0,
     true,
     {0.06, 0.24, 0.3},
     "Sadeghi et al. 2013, eq. 4 (A), Table 2",

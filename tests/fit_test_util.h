@@ -8,11 +8,25 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "data_synthetic/synthetic_table.h"
+#include "fitting/fit_result.h"
 #include "models/lafortune.h"
 
 namespace clothfit {
 namespace testing_util {
+
+// The reported parameter `name` (a test failure when there is none).
+inline const ParameterReport& Param(const FitReport& report,
+                                    const std::string& name) {
+  for (const ParameterReport& p : report.parameters) {
+    if (p.name == name) return p;
+  }
+  ADD_FAILURE() << "no parameter " << name;
+  static const ParameterReport kNone;
+  return kNone;
+}
 
 // A synthetic table of `rows` random direction pairs with multiplicative
 // noise (and sigma when noise > 0).

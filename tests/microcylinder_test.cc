@@ -66,7 +66,7 @@ int EntryCount(const ClothParams& c) {
   for (const ClothThread& th : c.threads) {
     n += 1 + kThreadFlatSize + static_cast<int>(th.offsets_deg.size());
   }
-  return n;
+  return n + 4;  // rotation_deg, diffuse
 }
 
 std::vector<double> Entries(const ClothParams& c) {
@@ -78,6 +78,8 @@ std::vector<double> Entries(const ClothParams& c) {
     x.insert(x.end(), p, p + kThreadFlatSize);
     x.insert(x.end(), th.offsets_deg.begin(), th.offsets_deg.end());
   }
+  x.push_back(c.rotation_deg);
+  for (int k = 0; k < 3; ++k) x.push_back(c.diffuse[k]);
   return x;
 }
 
@@ -94,6 +96,8 @@ ClothParamsT<T> ClothFromEntries(const T* x, const ClothParams& layout) {
     x += th.offsets_deg.size();
     c.threads.push_back(out);
   }
+  c.rotation_deg = x[0];
+  c.diffuse = Vec3<T>(x[1], x[2], x[3]);
   return c;
 }
 
@@ -139,7 +143,9 @@ TEST(ClothRho, JetAndDoubleAgreeAndGradientMatchesFiniteDifferences) {
   using J = ceres::Jet<double, 1>;
   for (const char* name :
        {"polyester_satin_charmeuse", "silk_shot", "linen_plain"}) {
-    const ClothParams cloth = Preset(name);
+    ClothParams cloth = Preset(name);
+    cloth.rotation_deg = 17.0;  // the optional freedoms too
+    cloth.diffuse = glm::dvec3(0.05, 0.1, 0.15);
     const int n = EntryCount(cloth);
     const std::vector<double> x = Entries(cloth);
     for (const auto& [wi, wo] : {std::pair{Dir(35, 20), Dir(50, 190)},
@@ -307,6 +313,60 @@ TEST(ClothRho, ReflectionOnly) {
   EXPECT_EQ(ClothRho(c, Dir(30, 0), -Dir(30, 0)).x, 0.0);
   EXPECT_EQ(ClothRho(c, -Dir(30, 0), Dir(30, 0)).x, 0.0);
   EXPECT_GT(ClothRho(c, Dir(30, 0), Dir(30, 180)).x, 0.0);
+}
+
+// rotation_deg turns the weave about the normal: the same as turning both
+// directions the other way; a quarter turn makes a warp (u) a weft (v).
+TEST(ClothRho, RotationTurnsTheWeaveAboutTheNormal) {
+  const ClothParams linen = Preset("linen_plain");
+  ClothParams turned = linen;
+  turned.rotation_deg = 30.0;
+  auto rotate = [](const glm::dvec3& w, double deg) {
+    const double r = Radians(deg);
+    return glm::dvec3(std::cos(r) * w.x - std::sin(r) * w.y,
+                      std::sin(r) * w.x + std::cos(r) * w.y, w.z);
+  };
+  ClothParams one_u = linen, one_v = linen;
+  one_u.threads.resize(1);
+  one_v.threads.resize(1);
+  one_v.threads[0].direction = ThreadDirection::kV;
+  one_u.rotation_deg = 90.0;
+  for (const auto& [wi, wo] : {std::pair{Dir(35, 20), Dir(50, 190)},
+                               std::pair{Dir(70, 95), Dir(20, -80)},
+                               std::pair{Dir(80, 0), Dir(82, 170)}}) {
+    const glm::dvec3 a = ClothRho(turned, wi, wo);
+    const glm::dvec3 b = ClothRho(linen, rotate(wi, -30.0), rotate(wo, -30.0));
+    const glm::dvec3 c = ClothRho(one_u, wi, wo);
+    const glm::dvec3 d = ClothRho(one_v, wi, wo);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(a[k], b[k], 1e-12 * b[k]);
+      EXPECT_NEAR(c[k], d[k], 1e-12 * d[k]);
+    }
+  }
+  // A turn that is not a symmetry of the weave changes the value.
+  EXPECT_GT(std::abs(ClothRho(turned, Dir(60, 0), Dir(60, 180)).y -
+                     ClothRho(linen, Dir(60, 0), Dir(60, 180)).y),
+            1e-3 * ClothRho(linen, Dir(60, 0), Dir(60, 180)).y);
+}
+
+// diffuse adds a Lambertian f = diffuse / pi outside the normalisation.
+TEST(ClothRho, DiffuseAddsALambertianTerm) {
+  const ClothParams linen = Preset("linen_plain");
+  ClothParams with = linen;
+  with.diffuse = glm::dvec3(0.1, 0.2, 0.3);
+  for (const auto& [wi, wo] : {std::pair{Dir(35, 20), Dir(50, 190)},
+                               std::pair{Dir(89.9, 95), Dir(20, -80)}}) {
+    const glm::dvec3 extra = ClothRho(with, wi, wo) - ClothRho(linen, wi, wo);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(extra[k], with.diffuse[k] * wi.z / kPi, 1e-15);
+    }
+  }
+  // Alone (no coverage): the Lambertian term, not 0.
+  ClothParams bare = with;
+  for (ClothThread& th : bare.threads) th.coverage = 0.0;
+  EXPECT_NEAR(ClothRho(bare, Dir(40, 0), Dir(30, 90)).z,
+              0.3 * std::cos(Radians(40.0)) / kPi, 1e-15);
+  EXPECT_EQ(ClothRho(with, Dir(40, 0), -Dir(30, 90)).x, 0.0);  // reflection
 }
 
 TEST(ClothRho, NoCoverageGivesZeroNotNaN) {

@@ -289,6 +289,43 @@ TEST(ParamsJsonTest, ScaleOfThreadAndClothIsOptionalKeptAndValidated) {
               {"threads[1].scale", "unknown key"});
 }
 
+// The weave's optional freedoms: absent is the paper's model (0) and then
+// not written; given, kept exactly; diffuse as one number or three;
+// validated by name.
+TEST(ParamsJsonTest, ClothRotationAndDiffuseAreOptionalKeptAndValidated) {
+  const ParamFile plain = ParseParamFile(GoodClothFile(), kFileName);
+  const ClothParams& p = std::get<ClothParams>(plain.params);
+  EXPECT_EQ(p.rotation_deg, 0.0);
+  EXPECT_EQ(p.diffuse, glm::dvec3(0.0));
+  EXPECT_EQ(FormatParamFile(plain).find("rotation_deg"), std::string::npos);
+  EXPECT_EQ(FormatParamFile(plain).find("diffuse"), std::string::npos);
+  const ParamFile turned = ParseParamFile(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "0.33"),
+                ", \"rotation_deg\": -37.25, \"diffuse\": [0.1, 0.2, 0.3]"),
+      kFileName);
+  const ClothParams& t = std::get<ClothParams>(turned.params);
+  EXPECT_EQ(t.rotation_deg, -37.25);
+  EXPECT_EQ(t.diffuse, glm::dvec3(0.1, 0.2, 0.3));
+  const std::string text = FormatParamFile(turned);
+  EXPECT_EQ(FormatParamFile(ParseParamFile(text, kFileName)), text);
+  EXPECT_NE(text.find("\"rotation_deg\": -37.25"), std::string::npos);
+  const ParamFile grey = ParseParamFile(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "0.33"),
+                ", \"diffuse\": 0.25"),
+      kFileName);
+  EXPECT_EQ(std::get<ClothParams>(grey.params).diffuse, glm::dvec3(0.25));
+  ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
+                        ClothThreadJson("v", "0.33"), ", \"diffuse\": 1.5"),
+              {"diffuse", "[0, 1]"});
+  ExpectError(
+      ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "0.33"),
+                ", \"rotation_deg\": 400"),
+      {"rotation_deg"});
+  ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
+                        ClothThreadJson("v", "0.33"), ", \"diffuse\": [1, 2]"),
+              {"diffuse", "3 numbers"});
+}
+
 TEST(ParamsJsonTest, UnknownTopLevelKeyIsNamed) {
   ExpectError(ThreadFile(ThreadKeys(), ", \"sheen\": 1"),
               {"sheen", "unknown key"});

@@ -108,15 +108,7 @@ void Note(const std::string& key, const std::string& text) {
   ::testing::Test::RecordProperty(key, text);
 }
 
-// The reported parameter `name`.
-const ParameterReport& Param(const FitReport& report, const std::string& name) {
-  for (const ParameterReport& p : report.parameters) {
-    if (p.name == name) return p;
-  }
-  ADD_FAILURE() << "no parameter " << name;
-  static const ParameterReport kNone;
-  return kNone;
-}
+using testing_util::Param;
 
 // Every parameter within `rel` of the truth (relative to Scale()); one
 // failure per fit, listing every parameter that misses.
