@@ -132,7 +132,8 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   }
   // The cost is that of the table's values (sigma scales with the value's
   // conversion to rho, lafortune_samples.h), over the samples merged per
-  // light and view; rms and relative_rms are of the rows as rho. The level
+  // light and view; rms and relative_rms are of the rows, in the table's
+  // quantity (LafortuneErrors). The level
   // estimate counts the lobes' entries as free, not the lookup table's.
   ReportWeighting(weighting, &fit.report);
   fit.report.minimised += std::string(" of the table's values (") +

@@ -136,13 +136,17 @@ void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
   for (size_t index : rows) {
     const TableRow& row = table.rows[index];
     if (!IsReflectionRow(row)) continue;
-    const glm::dvec3 y =
-        row.value * CosineWeightedFactor(table.quantity, row.wi.z);
+    // In the table's quantity, as every other fit reports (the model is
+    // rho, f = rho / wi.z).
+    const glm::dvec3& y = row.value;
     const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]
                                     : LookupView(model.lut, row.wo).color;
     const glm::dvec3 d =
-        t * LafortuneF1(model.params, ToTexelFrame(frame, row.wi),
-                        ToTexelFrame(frame, row.wo)) -
+        t *
+            LafortuneF1(model.params, ToTexelFrame(frame, row.wi),
+                        ToTexelFrame(frame, row.wo)) *
+            QuantityFactor(Quantity::kCosineWeighted, table.quantity,
+                           row.wi.z) -
         y;
     se += glm::dot(d, d);
     ss += glm::dot(y, y);

@@ -70,10 +70,11 @@ TexelSamples CollectSamples(const MeasurementTable& table,
                             const Weighting& weighting, const ViewIndex& views,
                             const std::vector<size_t>& rows, int* skipped);
 
-// RMS and relative RMS error of a model over table rows (as rho). Rows
-// at a stored view use its lookup-table entry directly (no interpolation).
-// view_relative_rms (may be null): the relative RMS error of each view's
-// colour - the mean over the view's rows (all its lights) of model and data
+// RMS and relative RMS error of a model over table rows, in the table's
+// quantity. Rows at a stored view use its lookup-table entry directly (no
+// interpolation). view_relative_rms (may be null): the relative RMS error of
+// each view's colour - the mean over the view's rows (all its lights) of model
+// and data
 // - over the views: the view-dependent colour the paper's Fig. 5 shows
 // (colour shifts at grazing views), which the lookup table is for.
 void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
