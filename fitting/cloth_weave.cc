@@ -134,6 +134,7 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
     fixed(kClothCoverage, prefix + kClothCoverage.name);
     fixed(kOffsetScale, prefix + kOffsetScale.name);
     specs.back().upper = largest > 0.0 ? kClothOffsets.fit_hi / largest : 1.0;
+    specs.back().physical_upper = true;  // the largest offset at 90 degrees
     for (size_t k = 0; k < layout.threads[j].offsets_deg.size(); ++k) {
       fixed(kClothOffsets,
             prefix + kClothOffsets.name + "[" + std::to_string(k) + "]");

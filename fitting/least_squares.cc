@@ -195,7 +195,9 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     p.upper = spec.upper;
     // On the solver's bound (a reparameterised entry's too).
     p.at_bound = spec.free && OnFitBound(x[i], spec.lower, spec.upper);
-    p.at_search_limit = p.at_bound && !spec.physical_bounds;
+    const bool on_lower = x[i] - spec.lower < spec.upper - x[i];
+    p.at_search_limit = p.at_bound && !spec.physical_bounds &&
+                        !(on_lower ? spec.physical_lower : spec.physical_upper);
     p.no_effect = no_effect[i];
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];

@@ -31,11 +31,21 @@ struct ParameterSpec {
   // one means the solver left the region where the model is meaningful:
   // the fit is reported as not converged.
   bool physical_bounds = false;
+  // Each end on its own: physical_bounds, or the end is a closed end of
+  // the parameter's documented range (a width's 90 degrees, the flattest
+  // lobe the model defines; its open end 0 is not, and the search stops
+  // at 0.2).
+  bool physical_lower = false, physical_upper = false;
 };
 
 // The spec of a table entry: its fit bounds, free.
 inline ParameterSpec SpecOf(const ParamInfo& info, const std::string& name) {
-  return ParameterSpec{name, info.fit_lo, info.fit_hi, true, info.physical};
+  ParameterSpec spec{name, info.fit_lo, info.fit_hi, true, info.physical};
+  spec.physical_lower =
+      info.physical || (info.fit_lo == info.valid.lo && !info.valid.lo_open);
+  spec.physical_upper =
+      info.physical || (info.fit_hi == info.valid.hi && !info.valid.hi_open);
+  return spec;
 }
 
 // One spec per flat entry of p (models/params.h ToArray), named `prefix`
