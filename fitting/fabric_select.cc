@@ -86,7 +86,7 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
            o.solver = solver;
            o.fit_scale = options.fit_scale;
            o.also_free = v.also_free;
-           if (!v.also_free.empty()) o.solve_starts = 8;
+           if (!v.also_free.empty()) o.solve_starts = 4;
            if (warm) {  // the whole table's solution, solved again
              o.multi_start = false;
              o.solve_starts = 1;
