@@ -205,14 +205,13 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   // The geometry (rotation, offsets) fixed: the tangent samples never
   // change. eta fixed: nor do their Fresnel terms.
-  bool geometry_fixed = !is_free(v.Rotation());
+  bool geometry_fixed = true;
+  for (size_t i = 0; i < lsq.specs.size(); ++i) {
+    geometry_fixed = geometry_fixed && !(is_free(i) && IsGeometry(v, i));
+  }
   std::vector<bool> eta_fixed(n);
   double fixed_coverage = 0.0;
   for (size_t j = 0; j < n; ++j) {
-    geometry_fixed = geometry_fixed && !is_free(v.OffsetScale(j));
-    for (size_t k = 0; k < v.Offsets(j); ++k) {
-      geometry_fixed = geometry_fixed && !is_free(v.Offset(j, k));
-    }
     eta_fixed[j] = !is_free(v.Thread(j));
     if (is_free(v.Coverage(j))) {
       weave->stick.push_back(j);

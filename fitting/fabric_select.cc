@@ -10,6 +10,7 @@
 #include "fitting/lafortune_select_internal.h"
 #include "fitting/thread_fit.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 #include "models/presets.h"
 
 namespace clothfit {
@@ -111,9 +112,8 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
 int FreeCount(const FitReport& r, int channels) {
   int n = 0;
   for (const ParameterReport& p : r.parameters) {
-    const bool follows = channels == 1 && p.name.size() > 2 &&
-                         (p.name.compare(p.name.size() - 2, 2, "_g") == 0 ||
-                          p.name.compare(p.name.size() - 2, 2, "_b") == 0);
+    const bool follows = channels == 1 && (text_util::EndsWith(p.name, "_g") ||
+                                           text_util::EndsWith(p.name, "_b"));
     n += p.free && !follows ? 1 : 0;
   }
   return n;

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "fitting/residual_weight.h"
+#include "models/microcylinder_cloth.h"
 
 namespace clothfit {
 namespace {
@@ -235,7 +236,7 @@ class Search {
       }
       if (d_index >= 0) {  // one channel: g and b follow r
         for (int k = c; k < (channels == 1 ? 3 : c + 1); ++k) {
-          point->diffuse[k] = std::min(x[d_index] / s, 1.0);
+          point->diffuse[k] = std::min(x[d_index] / s, kClothDiffuse.fit_hi);
         }
       }
     }
