@@ -178,6 +178,10 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
     std::cerr << "warning: " << report.identifiability << identifiability_hint
               << "\n";
   }
+  if (report.energy_scale < 1.0) {  // converged, then scaled
+    std::cerr << "error: " << report.message << "\n";
+    return 1;
+  }
   if (!report.converged) {
     std::cerr << "error: the solver stopped without converging ("
               << report.termination << "): " << report.message << "\n";

@@ -7,6 +7,7 @@
 
 #include "fitting/cloth_search.h"
 #include "fitting/cloth_weave_internal.h"
+#include "fitting/energy.h"
 #include "fitting/least_squares.h"
 #include "fitting/model_residual_internal.h"
 #include "io/input_error.h"
@@ -294,6 +295,12 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     result.params.diffuse = glm::dvec3(result.params.diffuse.x);
     ReportChannelsFollowRed("albedo", &result.report);
     ReportChannelsFollowRed("diffuse", &result.report);
+  }
+  if (options.conserve_energy) {
+    std::vector<double> model, measured;
+    lsq.predict(x, &model, &measured, nullptr);
+    ConserveEnergyByScale(ModelParams(result.params), model, measured,
+                          &result.params.scale, &result.report);
   }
   result.report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

@@ -45,6 +45,11 @@ struct ClothFitOptions {
   // Data on an arbitrary scale: fit a factor s on the model as well
   // (reported as the parameter "scale"; the parameter file holds the model).
   bool fit_scale = false;
+  // Energy conservation (fitting/energy.h, ConserveEnergyByScale): a
+  // fitted model whose directional albedo exceeds 1 somewhere is scaled
+  // down until it is 1 there, and the fit says so (not converged). Off
+  // only for fits that are scored, not written (held-out folds).
+  bool conserve_energy = true;
 };
 
 using ClothFitResult = FitResult<ClothParams>;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,50 @@ void ReportModelEnergy(const ModelParams& fitted, FitReport* report) {
   const EnergyCheck e = ModelEnergy(fitted);
   report->max_albedo = e.max_albedo;
   report->max_albedo_at = DescribeEnergy(e);
+}
+
+double ConserveEnergyByScale(const ModelParams& fitted,
+                             const std::vector<double>& model,
+                             const std::vector<double>& measured, double* scale,
+                             FitReport* report) {
+  const EnergyCheck e = ModelEnergy(fitted);
+  report->max_albedo = e.max_albedo;
+  report->max_albedo_at = DescribeEnergy(e);
+  if (!(e.max_albedo > 1.0) || !std::isfinite(e.max_albedo)) return 1.0;
+  const double s = 1.0 / e.max_albedo;
+  *scale *= s;
+  report->energy_scale = s;
+  // The model is linear in its factor: the scaled model's values are s
+  // times the fit's.
+  double se = 0.0, ss = 0.0;
+  for (size_t i = 0; i < model.size(); ++i) {
+    const double d = s * model[i] - measured[i];
+    se += d * d;
+    ss += measured[i] * measured[i];
+  }
+  report->rms = std::sqrt(se / std::max<size_t>(1, model.size()));
+  report->relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
+  for (ParameterReport& p : report->parameters) {
+    if (p.name != "scale") continue;  // the fitted factor, as written
+    p.value *= s;
+    if (p.stddev > 0.0) p.stddev *= s;
+    if (p.stddev_sandwich > 0.0) p.stddev_sandwich *= s;
+  }
+  MarkEnergyScaled(report);
+  return s;
+}
+
+void MarkEnergyScaled(FitReport* report) {
+  if (!(report->energy_scale < 1.0)) return;
+  report->converged = false;
+  std::ostringstream msg;
+  msg.precision(4);
+  msg << "the fitted model reflected more than it received, "
+      << report->max_albedo_at << "; it was scaled by " << report->energy_scale
+      << " to conserve energy (data brighter than a physical surface: "
+         "check the table's calibration)";
+  if (!report->message.empty()) msg << "; " << report->message;
+  report->message = msg.str();
 }
 
 void ScaleLafortuneAlbedo(double s, LafortuneParams* p) {

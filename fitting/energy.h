@@ -34,10 +34,29 @@ int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
                              std::vector<glm::dvec3>* t);
 
 // Records ModelEnergy of a fitted model in the report (max_albedo,
-// max_albedo_at) unless the fit did (a Lafortune texel). Thread and cloth
-// are reported, not scaled: the published microcylinder model exceeds 1 at
-// grazing views by itself (docs/fitting.md).
+// max_albedo_at) unless the fit did (a Lafortune texel or a cloth fit).
+// A thread is reported, not scaled: the published microcylinder thread
+// exceeds 1 at grazing views along its axis by itself (docs/fitting.md).
 void ReportModelEnergy(const ModelParams& fitted, FitReport* report);
+
+// The energy rule of a fit whose model has an overall factor (a cloth
+// model's `scale`): when ModelEnergy(fitted) exceeds 1, *scale is
+// multiplied by s = 1 / that albedo, so that what is written conserves
+// energy; `model` and `measured` are the fit's predictions at its optimum
+// and the data they match (LeastSquaresProblem::predict), from which the
+// report's rms and relative_rms become the scaled model's. Records the
+// check (max_albedo, max_albedo_at, energy_scale) and, when it scaled,
+// marks the fit not converged (MarkEnergyScaled). Returns s (1: nothing
+// scaled).
+double ConserveEnergyByScale(const ModelParams& fitted,
+                             const std::vector<double>& model,
+                             const std::vector<double>& measured, double* scale,
+                             FitReport* report);
+
+// A fit scaled to conserve energy (report->energy_scale < 1) is not
+// converged: the message says where the model reflected more than it
+// received and by what it was scaled (kept before any earlier message).
+void MarkEnergyScaled(FitReport* report);
 
 // Multiplies the albedo of every direction by s > 0: rho_d by s, each
 // lobe's C by s^(1/N) (its value by s).

@@ -94,6 +94,7 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
            if (warm) {  // the whole table's solution, solved again
              o.multi_start = false;
              o.solve_starts = 1;
+             o.conserve_energy = false;  // scored, not written
            }
            ClothParams init = start;
            if (warm) {

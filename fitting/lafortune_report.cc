@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fitting/energy.h"
 #include "fitting/lafortune_fit.h"
 
 namespace clothfit {
@@ -47,18 +48,7 @@ void ReportLafortuneLimits(const LafortuneParams& p, FitReport* report) {
            "--tolerance)";
     report->message = msg.str();
   }
-  if (report->energy_scale < 1.0) {
-    report->converged = false;
-    std::ostringstream msg;
-    msg.precision(4);
-    msg << "the fitted model reflected more than it received, "
-        << report->max_albedo_at << "; it was scaled by "
-        << report->energy_scale
-        << " to conserve energy (data brighter than a physical surface: "
-           "check the table's calibration)";
-    if (!report->message.empty()) msg << "; " << report->message;
-    report->message = msg.str();
-  }
+  MarkEnergyScaled(report);
 }
 
 // Names the first sample whose model value is not finite: the table line of its

@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "data_synthetic/virtual_gonio.h"
+#include "fitting/cloth_fit.h"
 #include "fitting/energy.h"
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
 #include "models/albedo.h"
 #include "models/presets.h"
+#include "tests/fit_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -124,6 +126,54 @@ TEST(ModelEnergy, ClothIsReportedAndTheThreadModelExceedsOneAtGrazing) {
       << report.max_albedo_at;
   const ModelParams thread = cloth.threads[0].params;
   EXPECT_GT(ModelEnergy(thread).max_albedo, 1.0);
+}
+
+// A cloth table 3 x brighter than the linen preset (data on a wrong
+// calibration) fitted with --fit-scale: the exact refit would reflect
+// 1.5 x what it receives at the normal, so the fit writes it scaled to a
+// largest albedo of 1, reports the scale and the error of what it wrote,
+// and is not converged. The preset's own table is left alone.
+TEST(ClothEnergy, BrightFitIsScaledToAlbedoOneAndSaysSo) {
+  ClothParams linen;
+  ASSERT_TRUE(GetPreset("linen_plain", &linen));
+  const double truth_albedo = ModelEnergy(linen).max_albedo;
+  ASSERT_LT(truth_albedo, 0.6);
+  for (double brightness : {1.0, 3.0}) {
+    SCOPED_TRACE(brightness);
+    MeasurementTable table = testing_util::NoisyTable(linen, 0.0, 3, 300);
+    for (TableRow& row : table.rows) row.value *= brightness;
+    ClothFitOptions options;
+    options.fit_scale = true;
+    options.free_only = {"scale"};  // the weave is the preset's
+    const ClothFitResult fit = FitCloth(table, linen, options);
+    ASSERT_TRUE(fit.report.usable) << fit.report.message;
+    const double written = ModelEnergy(fit.params).max_albedo;
+    EXPECT_NEAR(fit.report.max_albedo, truth_albedo * brightness,
+                1e-6 * brightness);
+    double se = 0.0, ss = 0.0;
+    for (const TableRow& row : table.rows) {
+      const glm::dvec3 d =
+          Value(fit.params, row.wi, row.wo, table.quantity) - row.value;
+      se += glm::dot(d, d);
+      ss += glm::dot(row.value, row.value);
+    }
+    EXPECT_NEAR(fit.report.relative_rms, std::sqrt(se / ss), 1e-9);
+    if (brightness == 1.0) {
+      EXPECT_TRUE(fit.report.converged) << fit.report.message;
+      EXPECT_EQ(fit.report.energy_scale, 1.0);
+      EXPECT_NEAR(fit.params.scale, 1.0, 1e-6);
+      EXPECT_LT(fit.report.relative_rms, 1e-6);
+    } else {
+      EXPECT_FALSE(fit.report.converged);
+      EXPECT_NEAR(fit.report.energy_scale, 1.0 / (3.0 * truth_albedo), 1e-6);
+      EXPECT_NEAR(written, 1.0, 1e-9);
+      EXPECT_NEAR(fit.params.scale, 1.0 / truth_albedo, 1e-5);
+      EXPECT_NEAR(fit.report.relative_rms, 1.0 - 1.0 / (3.0 * truth_albedo),
+                  1e-5);
+      EXPECT_NE(fit.report.message.find("conserve energy"), std::string::npos)
+          << fit.report.message;
+    }
+  }
 }
 
 // synth --gonio plain --texels 16 --directions 8, fit --mip: every texel of
