@@ -40,6 +40,11 @@ bool CommandArgs::Parse(int argc, char** argv, int first) {
       return false;
     }
     if (arg.rfind("--", 0) != 0 || arg == "--") {
+      if (positional_.size() == max_positional_) {
+        Fail("unexpected argument '" + arg + "'" +
+             (max_positional_ == 0 ? std::string(" (options start with --)")
+                                   : std::string()));
+      }
       positional_.push_back(arg);
       continue;
     }

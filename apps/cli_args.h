@@ -19,6 +19,9 @@ class CommandArgs {
   void Option(const std::string& name, const std::string& value_name,
               const std::string& help, const std::string& fallback = "");
   void Flag(const std::string& name, const std::string& help);
+  // How many arguments that are not options the command takes (default 0):
+  // any more are bad input, never dropped.
+  void Positionals(size_t max) { max_positional_ = max; }
 
   // Parses argv[first..]. Returns false when --help was given (the help
   // text has been printed to stdout). Throws InputError on bad usage.
@@ -47,6 +50,7 @@ class CommandArgs {
   std::map<std::string, Spec> specs_;
   std::map<std::string, std::string> values_;
   std::vector<std::string> positional_;
+  size_t max_positional_ = 0;
 };
 
 }  // namespace clothfit

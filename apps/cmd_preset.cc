@@ -11,6 +11,7 @@ int RunPreset(int argc, char** argv) {
                    "Prints (or writes) the parameter file of a preset fabric "
                    "of Sadeghi et al. 2013 (Tables 2 and 3).");
   args.Option("out", "P.json", "write to this file instead of stdout");
+  args.Positionals(1);
   if (!args.Parse(argc, argv, 2)) return 0;
   if (args.Positional().size() != 1) {
     args.Fail("expected one preset name (see 'clothfit presets')");
@@ -33,7 +34,6 @@ int RunPresets(int argc, char** argv) {
   CommandArgs args("presets", "clothfit presets",
                    "Lists the preset fabrics, one name per line.");
   if (!args.Parse(argc, argv, 2)) return 0;
-  if (!args.Positional().empty()) args.Fail("takes no arguments");
   for (const std::string& name : PresetNames()) std::cout << name << "\n";
   return 0;
 }

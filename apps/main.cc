@@ -1,6 +1,8 @@
 // clothfit: fits cloth appearance models to measurement tables (SPEC §5).
 #include <glog/logging.h>
 
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -22,9 +24,6 @@ int RunVersion(int argc, char** argv) {
   clothfit::CommandArgs args("version", "clothfit version | clothfit --version",
                              "Prints the version of clothfit.");
   if (!args.Parse(argc, argv, 2)) return 0;
-  if (!args.Positional().empty()) {
-    args.Fail("unexpected argument '" + args.Positional()[0] + "'");
-  }
   std::cout << "clothfit " << CLOTHFIT_VERSION << "\n";
   return 0;
 }
@@ -81,6 +80,21 @@ int UnknownCommand(const std::string& context, const std::string& name) {
   return 2;
 }
 
+// What a command printed (a parameter file, a summary, its help) is its
+// output: a failed write of standard output (a full disk) is an error,
+// never exit 0. Both streams: the summaries use std::cout and printf.
+int Finish(int status) {
+  std::cout.flush();
+  const bool failed = !std::cout || std::fflush(stdout) != 0 ||
+                      std::ferror(stdout) != 0;
+  if (!failed) return status;
+  std::cerr << "error: standard output: cannot write"
+            << (errno != 0 ? std::string(": ") + std::strerror(errno)
+                           : std::string())
+            << "\n";
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,7 +109,7 @@ int main(int argc, char** argv) {
   std::string name = argv[1];
   if (name == "--help" || name == "-h" || (name == "help" && argc == 2)) {
     PrintUsage(std::cout);
-    return 0;
+    return Finish(0);
   }
   if (name == "--version") name = "version";
   // clothfit help CMD [ARGS...] runs clothfit CMD [ARGS...] --help, so that
@@ -117,7 +131,7 @@ int main(int argc, char** argv) {
   const Command* c = FindCommand(name);
   if (c == nullptr) return UnknownCommand("", name);
   try {
-    return c->run(argc, argv);
+    return Finish(c->run(argc, argv));
   } catch (const clothfit::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

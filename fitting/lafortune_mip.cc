@@ -212,16 +212,33 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
   const ViewIndex views(table);
   const Weighting weighting = LafortuneWeighting(table, options.noise);
   out.views = views.views();
-  int width = 0, height = 0;
+  // The map is (largest s + 1) x (largest t + 1) texels. A texel index far
+  // beyond the others (a typo, a column of another table) would make a
+  // map of mostly empty texels, each a failed fit, or one too large to
+  // allocate: a map with more texels than the table has rows is bad input.
+  if (table.rows.empty()) throw InputError("the table has no rows");
+  auto texels = [](const TableRow& r) {
+    return (static_cast<int64_t>(r.s) + 1) * (static_cast<int64_t>(r.t) + 1);
+  };
+  int64_t wide = 0, high = 0;
+  const TableRow* largest = &table.rows.front();
   for (const TableRow& row : table.rows) {
-    width = std::max(width, row.s + 1);
-    height = std::max(height, row.t + 1);
+    if (texels(row) > texels(*largest)) largest = &row;
+    wide = std::max<int64_t>(wide, static_cast<int64_t>(row.s) + 1);
+    high = std::max<int64_t>(high, static_cast<int64_t>(row.t) + 1);
   }
-  // Rows of every texel of the level being fitted: level 0 from the table
-  // (counted first, so that no list grows by doubling), level l+1 from 2 x 2
-  // groups of level l (ROUND_DOWN: an odd last row/column joins the group
-  // before it), made when level l is done. One level's lists at a time:
-  // 8 bytes a row, not 8 per row and level.
+  if (wide * high > static_cast<int64_t>(table.rows.size())) {
+    throw InputError(
+        FormatLocation(table.source.empty() ? "table" : table.source,
+                       largest->source_line, 0) +
+        ": texel (" + std::to_string(largest->s) + ", " +
+        std::to_string(largest->t) + ") makes the texture " +
+        std::to_string(wide) + " x " + std::to_string(high) +
+        " texels, more than the table's " + std::to_string(table.rows.size()) +
+        " rows: most texels would have no data (s and t count texels from "
+        "0)");
+  }
+  const int width = static_cast<int>(wide), height = static_cast<int>(high);
   std::vector<std::vector<size_t>> texel_rows(static_cast<size_t>(width) *
                                               height);
   {
