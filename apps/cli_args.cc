@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "io/atomic_file.h"
 #include "io/input_error.h"
 
 namespace clothfit {
@@ -72,9 +73,31 @@ bool CommandArgs::Parse(int argc, char** argv, int first) {
       }
       value = argv[++i];
     }
+    if (value.empty()) {
+      Fail("option '--" + name + "' needs a value (" + it->second.value_name +
+           "), got ''");
+    }
     values_[name] = value;
   }
+  CheckFiles();
   return true;
+}
+
+void CommandArgs::Files(const std::vector<std::string>& inputs,
+                        const std::vector<std::string>& outputs) {
+  inputs_ = inputs;
+  outputs_ = outputs;
+}
+
+void CommandArgs::CheckFiles() const {
+  std::vector<NamedFile> inputs, outputs;
+  for (const std::string& name : inputs_) {
+    if (Has(name)) inputs.push_back({"--" + name, values_.at(name)});
+  }
+  for (const std::string& name : outputs_) {
+    if (Has(name)) outputs.push_back({"--" + name, values_.at(name)});
+  }
+  CheckOutputsDistinct(outputs, inputs);
 }
 
 bool CommandArgs::Has(const std::string& name) const {

@@ -22,6 +22,13 @@ class CommandArgs {
   // How many arguments that are not options the command takes (default 0):
   // any more are bad input, never dropped.
   void Positionals(size_t max) { max_positional_ = max; }
+  // The options that name files the command reads and writes: Parse
+  // refuses an output that is one of the inputs or another output. The
+  // default is clothfit's option names: --data, --dirs, --params, --init,
+  // --stack, --mask, --compare, --truth are read; --out, --png, --distances,
+  // --chart, --error-map, --csv, --transmittance are written.
+  void Files(const std::vector<std::string>& inputs,
+             const std::vector<std::string>& outputs);
 
   // Parses argv[first..]. Returns false when --help was given (the help
   // text has been printed to stdout). Throws InputError on bad usage.
@@ -49,7 +56,13 @@ class CommandArgs {
   std::vector<std::string> order_;
   std::map<std::string, Spec> specs_;
   std::map<std::string, std::string> values_;
+  void CheckFiles() const;
+
   std::vector<std::string> positional_;
+  std::vector<std::string> inputs_ = {"data",  "dirs", "params",  "init",
+                                      "stack", "mask", "compare", "truth"};
+  std::vector<std::string> outputs_ = {
+      "out", "png", "distances", "chart", "error-map", "csv", "transmittance"};
   size_t max_positional_ = 0;
 };
 

@@ -43,6 +43,7 @@ int RunBench(int argc, char** argv) {
   args.Option("python", "PATH",
               "Python 3 with SciPy for the peer (python3-scipy)",
               "/usr/bin/python3 if present, else python3");
+  args.Files({}, {});  // --out is a folder of new files
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string dir = args.Required("out");
   BenchOptions options;

@@ -115,6 +115,12 @@ int RunFitLafortune(int argc, char** argv) {
                 ModelName(file.params));
     }
     init = std::get<LafortuneModel>(file.params);
+    if (init->params.lobes.size() > 3) {
+      throw InputError(args.Get("init") + ": key 'lobes': " +
+                       std::to_string(init->params.lobes.size()) +
+                       " lobes; the fit fits 0 to 3 (a start with more would "
+                       "lose lobes)");
+    }
   }
   long lobes = 2;
   if (args.Has("lobes")) {

@@ -37,6 +37,9 @@ int RunGonio(const CommandArgs& args) {
   options.glossy = args.GetDouble("glossy");
   options.gap = args.GetDouble("gap");
   options.seed = static_cast<uint64_t>(args.GetInt("seed"));
+  if (args.Has("stack") == args.Has("out")) {
+    args.Fail("--gonio writes one table: give --out T.csv or --stack M.csv");
+  }
   const MeasurementTable table = MeasureVirtualGonio(options);
   if (args.Has("stack")) {
     const std::string ext = args.Get("image-ext");
@@ -105,6 +108,8 @@ int RunSynth(int argc, char** argv) {
               "gonio: write an image stack (manifest) "
               "instead of --out");
   args.Option("image-ext", "EXT", "gonio stack image format", ".exr");
+  // --stack is a manifest written here (one read by fit).
+  args.Files({"params", "dirs"}, {"out", "stack"});
   if (!args.Parse(argc, argv, 2)) return 0;
   if (args.Has("gonio")) return RunGonio(args);
   SynthOptions options;

@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 // The project version, from CMake's project(VERSION ...) (apps/CMakeLists.txt).
 #ifndef CLOTHFIT_VERSION
@@ -75,7 +76,8 @@ int UnknownCommand(const std::string& context, const std::string& name) {
   for (const Command& c : kCommands) {
     names += (names.empty() ? "" : ", ") + std::string(c.name);
   }
-  std::cerr << "error: " << context << "unknown command '" << name
+  std::cerr << "error: " << context << "unknown command '"
+            << clothfit::text_util::EscapeControl(name)
             << "' (commands: " << names << "; see 'clothfit --help')\n";
   return 2;
 }
@@ -85,8 +87,8 @@ int UnknownCommand(const std::string& context, const std::string& name) {
 // never exit 0. Both streams: the summaries use std::cout and printf.
 int Finish(int status) {
   std::cout.flush();
-  const bool failed = !std::cout || std::fflush(stdout) != 0 ||
-                      std::ferror(stdout) != 0;
+  const bool failed =
+      !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
   if (!failed) return status;
   std::cerr << "error: standard output: cannot write"
             << (errno != 0 ? std::string(": ") + std::strerror(errno)
@@ -103,7 +105,7 @@ int main(int argc, char** argv) {
   // so that bad input gets one clear message.
   FLAGS_minloglevel = google::GLOG_FATAL;
   if (argc < 2) {
-    PrintUsage(std::cerr);
+    std::cerr << "error: no command given (see 'clothfit --help')\n";
     return 2;
   }
   std::string name = argv[1];
@@ -133,13 +135,15 @@ int main(int argc, char** argv) {
   try {
     return Finish(c->run(argc, argv));
   } catch (const clothfit::InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << clothfit::text_util::EscapeControl(e.what())
+              << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
     std::cerr << "error: out of memory\n";
     return 2;
   } catch (const std::exception& e) {
-    std::cerr << "internal error: " << e.what() << "\n";
+    std::cerr << "internal error: "
+              << clothfit::text_util::EscapeControl(e.what()) << "\n";
     return 3;
   }
 }

@@ -416,11 +416,12 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   }
   if (!options.lookup_table) {
     out.report.converged = true;
-    out.report.termination = "no lookup table: one lobe fit";
+    out.report.termination = "no lookup table: the lobes in one solve";
   } else if (!lut) {
     out.report.converged = true;
     out.report.termination =
-        "no view has enough samples for a lookup-table entry: one lobe fit";
+        "no view has enough samples for a lookup-table entry: the lobes in one "
+        "solve";
   } else if (joint) {
     out.report.converged = lut_converged;
     out.report.termination =
@@ -430,6 +431,12 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   } else if (lut_converged) {
     out.report.converged = true;
     out.report.termination = "lookup table converged";
+  } else if (out.report.alternations < 2) {
+    // The change is measured between alternations: one has none to show.
+    out.report.termination =
+        "alternation cap (" + std::to_string(options.max_alternations) +
+        ") reached before the lookup table's change could be measured "
+        "(raise --alternations)";
   } else {
     char why[200];
     std::snprintf(why, sizeof(why),

@@ -257,42 +257,27 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
     for (ParameterSpec& spec : *specs) spec.free = false;
     Mark(free_only, "--free", true, specs);
   }
+  // --free albedo --fix albedo_r frees green and blue; a name in both lists
+  // is a contradiction.
+  for (const std::string& f : fix) {
+    for (const std::string& g : free_only) {
+      if (f == g) {
+        throw InputError("--fix and --free both name '" + f +
+                         "': a parameter is either fixed or free");
+      }
+    }
+  }
   Mark(fix, "--fix", false, specs);
+  if (fix.empty() && free_only.empty()) return;
+  for (const ParameterSpec& spec : *specs) {
+    if (spec.free) return;
+  }
+  throw InputError("--fix and --free leave no parameter free: nothing to fit");
 }
 
 void FreeAlso(const std::vector<std::string>& names,
               std::vector<ParameterSpec>* specs) {
   Mark(names, "--also-free", true, specs);
-}
-
-std::string NonFiniteRow(const LeastSquaresProblem& lsq,
-                         const std::vector<double>& x) {
-  std::vector<double> model, measured;
-  std::vector<const TableRow*> rows;
-  lsq.predict(x, &model, &measured, &rows);
-  for (size_t i = 0; i < model.size(); ++i) {
-    if (std::isfinite(model[i]) && std::isfinite(model[i] - measured[i])) {
-      continue;
-    }
-    const TableRow& row = *rows[i];
-    std::ostringstream out;
-    out.precision(6);
-    out << "the model value is " << model[i] << " (data " << measured[i]
-        << ") at ";
-    if (row.source_line > 0) {
-      out << "line " << row.source_line << " of the table";
-    } else {
-      out << "a row made in memory";
-    }
-    out << ", wi (" << row.wi.x << ", " << row.wi.y << ", " << row.wi.z
-        << "), wo (" << row.wo.x << ", " << row.wo.y << ", " << row.wo.z
-        << "), with";
-    for (size_t k = 0; k < lsq.specs.size() && k < x.size(); ++k) {
-      out << (k ? ", " : " ") << lsq.specs[k].name << " = " << x[k];
-    }
-    return out.str();
-  }
-  return "";
 }
 
 FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
@@ -443,13 +428,16 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     const int free_count = static_cast<int>(
         std::count_if(best.parameters.begin(), best.parameters.end(),
                       [](const ParameterReport& p) { return p.free; }));
-    if (best.converged && best.residuals < free_count) {
+    const int distinct = DistinctResiduals(lsq, x, best.residuals, free_count);
+    if (best.converged && distinct < free_count) {
       best.converged = false;
-      best.message = std::to_string(best.residuals) +
-                     " residual(s) cannot determine " +
-                     std::to_string(free_count) +
-                     " free parameters (give more rows, or fix some with "
-                     "--fix)";
+      best.message =
+          (distinct < best.residuals
+               ? std::to_string(best.residuals) + " residual(s) at " +
+                     std::to_string(distinct) + " distinct one(s)"
+               : std::to_string(best.residuals) + " residual(s)") +
+          " cannot determine " + std::to_string(free_count) +
+          " free parameters (give more rows, or fix some with --fix)";
     }
     // A free parameter on a search limit that changes no residual there
     // (ParameterReport::no_effect) is undetermined, not pushing outward:

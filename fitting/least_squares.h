@@ -117,7 +117,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& problem,
 // ("threads[0].kd"), by its last part ("kd": every thread), and "albedo"
 // matches the three albedo_r/g/b. `free_only`, when not empty, fixes every
 // entry it does not match; `fix` then fixes what it matches. Throws
-// InputError naming `option` and the name when a name matches nothing.
+// InputError naming `option` and the name when a name matches nothing, when
+// a name is in both lists, and when they leave no entry free.
 void ApplyFreeFix(const std::vector<std::string>& fix,
                   const std::vector<std::string>& free_only,
                   std::vector<ParameterSpec>* specs);
@@ -133,5 +134,12 @@ void FreeAlso(const std::vector<std::string>& names,
 // directions and the parameters; "" when every value is finite.
 std::string NonFiniteRow(const LeastSquaresProblem& lsq,
                          const std::vector<double>& x);
+
+// How many of the `residuals` are distinct at x: residuals of rows that
+// repeat one measurement (the same directions, texel and normal) count
+// once, as they cannot determine more than one row does. Stops counting
+// (returns `residuals`) once `enough` distinct rows are seen.
+int DistinctResiduals(const LeastSquaresProblem& lsq,
+                      const std::vector<double>& x, int residuals, int enough);
 
 }  // namespace clothfit

@@ -215,14 +215,9 @@ Image ReadImage(const std::string& path, const std::string& manifest,
                 int line) {
   const std::string listed =
       " (listed on " + FormatLocation(manifest, line, 0) + ")";
-  std::error_code error;
-  if (!fs::exists(path, error)) {
-    Fail(path, 0, 0,
-         std::string("cannot read image: ") + std::strerror(ENOENT) + listed);
-  }
-  if (fs::is_directory(path, error)) {
-    Fail(path, 0, 0,
-         std::string("cannot read image: ") + std::strerror(EISDIR) + listed);
+  const std::string file_problem = RegularFileProblem(path);
+  if (!file_problem.empty()) {
+    Fail(path, 0, 0, "cannot read image: " + file_problem + listed);
   }
   const std::string header_problem = CheckImageHeader(path, kMaxPixels);
   if (!header_problem.empty()) {

@@ -54,10 +54,8 @@ Mask ReadMask(const std::string& path, const MaskReadOptions& options) {
     Fail(path, "mask threshold must be in (0, 1], got " +
                    std::to_string(options.threshold));
   }
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    Fail(path, "cannot read mask: no such file");
-  }
+  const std::string file_problem = RegularFileProblem(path);
+  if (!file_problem.empty()) Fail(path, "cannot read mask: " + file_problem);
   const std::string header_problem = CheckImageHeader(path, kMaxMaskTexels);
   if (!header_problem.empty())
     Fail(path, "cannot read mask image: " + header_problem);

@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfStdIO.h>
+#include <ImfStringAttribute.h>
 #include <ImfTileDescription.h>
 #include <ImfTileDescriptionAttribute.h>
 #include <ImfTiledInputFile.h>
@@ -26,6 +27,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/json_text_internal.h"
 #include "io/text_util.h"
 #include "models/mip_levels.h"
 
@@ -35,6 +37,9 @@ namespace {
 using nlohmann::json;
 
 constexpr char kFormat[] = "clothfit-param-mipmap 1";
+// The EXR header attribute that holds the index, so that the EXR is
+// complete alone; the .exr.json beside it is a copy for people and tools.
+constexpr char kIndexAttribute[] = "clothfit:index";
 constexpr int kTileSize = 32;
 // OpenEXR's limit on channel names (with the long-names flag).
 constexpr size_t kMaxChannelNameLength = 255;
@@ -132,41 +137,43 @@ Imf::FrameBuffer MakeFrameBuffer(const std::vector<std::string>& channels,
   return frame_buffer;
 }
 
-void WriteExr(const ParamMipmap& mipmap, const std::string& path) {
+// Writes the EXR under `file` (a name OutputFile gave), with the index text
+// in its header; returns "" or the problem.
+std::string WriteExr(const ParamMipmap& mipmap, const std::string& file,
+                     const std::string& index_text) {
   const int width = mipmap.levels[0].width;
   const int height = mipmap.levels[0].height;
-  WriteAtomicallyVia(path, [&](const std::string& temp) -> std::string {
-    try {
-      Imf::Header header(width, height);
-      const bool mipmapped = static_cast<int>(mipmap.levels.size()) ==
-                             MipLevelCount(width, height);
-      header.setTileDescription(Imf::TileDescription(
-          kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
-          Imf::ROUND_DOWN));
-      header.compression() = Imf::ZIP_COMPRESSION;
-      for (const std::string& name : mipmap.channels) {
-        header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      }
-      std::ofstream stream(temp, std::ios::binary | std::ios::trunc);
-      if (!stream) return "cannot write: cannot open " + temp;
-      {
-        Imf::StdOFStream exr_stream(stream, temp.c_str());
-        Imf::TiledOutputFile out(exr_stream, header);
-        for (int level = 0; level < out.numLevels(); ++level) {
-          out.setFrameBuffer(
-              MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
-          out.writeTiles(0, out.numXTiles(level) - 1, 0,
-                         out.numYTiles(level) - 1, level);
-        }
-        // The destructor writes the tile offset table.
-      }
-      stream.close();
-      if (!stream) return "cannot write: error while writing " + temp;
-      return "";
-    } catch (const std::exception& error) {
-      return std::string("cannot write OpenEXR file: ") + error.what();
+  try {
+    Imf::Header header(width, height);
+    const bool mipmapped =
+        static_cast<int>(mipmap.levels.size()) == MipLevelCount(width, height);
+    header.setTileDescription(Imf::TileDescription(
+        kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
+        Imf::ROUND_DOWN));
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const std::string& name : mipmap.channels) {
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     }
-  });
+    header.insert(kIndexAttribute, Imf::StringAttribute(index_text));
+    std::ofstream stream(file, std::ios::binary | std::ios::trunc);
+    if (!stream) return std::string("cannot write: ") + std::strerror(errno);
+    {
+      Imf::StdOFStream exr_stream(stream, file.c_str());
+      Imf::TiledOutputFile out(exr_stream, header);
+      for (int level = 0; level < out.numLevels(); ++level) {
+        out.setFrameBuffer(
+            MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
+        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1,
+                       level);
+      }
+      // The destructor writes the tile offset table.
+    }
+    stream.close();
+    if (!stream) return "cannot write: error while writing the OpenEXR file";
+    return "";
+  } catch (const std::exception& error) {
+    return std::string("cannot write OpenEXR file: ") + error.what();
+  }
 }
 
 // Reads a non-negative integer member of the index.
@@ -187,14 +194,10 @@ struct Index {
   std::string metadata_json = "{}";
 };
 
-Index ReadIndex(const std::string& name) {
-  const std::string text = ReadFileToString(name);
-  json index;
-  try {
-    index = json::parse(text);
-  } catch (const json::exception& error) {
-    Fail(name, "invalid JSON: " + text_util::Printable(error.what()));
-  }
+// The index from its text (the EXR header's or the .exr.json copy's), named
+// `name` in messages.
+Index ParseIndex(const std::string& text, const std::string& name) {
+  const json index = ParseJsonText<json>(text, name);
   if (!index.is_object()) Fail(name, "expected a JSON object");
   const auto format = index.find("format");
   if (format == index.end() || !format->is_string() ||
@@ -251,9 +254,31 @@ Index ReadIndex(const std::string& name) {
   return result;
 }
 
-void ReadExr(const std::string& path, const Index& index, ParamMipmap* mipmap) {
+// The index: from the EXR header (clothfit 0.4 on), else from the .exr.json
+// beside the EXR (files written before).
+Index ReadIndex(const std::string& path, const Imf::Header& header) {
+  const auto* attribute =
+      header.findTypedAttribute<Imf::StringAttribute>(kIndexAttribute);
+  if (attribute != nullptr) {
+    return ParseIndex(attribute->value(),
+                      path + ": header attribute '" + kIndexAttribute + "'");
+  }
+  const std::string copy = path + ".json";
+  std::error_code error;
+  if (!std::filesystem::exists(copy, error)) {
+    Fail(copy, "missing: the JSON index of the parameter mip map " + path +
+                   " (its header has none: written by clothfit 0.3 or earlier, "
+                   "keep the two together)");
+  }
+  return ParseIndex(ReadFileToString(copy), copy);
+}
+
+void ReadExr(const std::string& path, ParamMipmap* mipmap) {
   Imf::TiledInputFile in(path.c_str());
   const Imf::Header& header = in.header();
+  const Index index = ReadIndex(path, header);
+  mipmap->channels = index.channels;
+  mipmap->metadata_json = index.metadata_json;
   const bool one_level =
       header.hasTileDescription() && in.levelMode() == Imf::ONE_LEVEL;
   if (!header.hasTileDescription() ||
@@ -333,27 +358,30 @@ void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
     Fail(path, std::string("cannot write index: ") + error.what());
   }
 
-  WriteExr(mipmap, path);
-  WriteFileAtomically(path + ".json", index_text);
+  // The EXR and its index copy are committed together, after both were
+  // written: a failure leaves both as they were. A device or standard
+  // output gets the EXR alone.
+  OutputFile exr(path);
+  const std::string problem = WriteExr(mipmap, exr.write_path(), index_text);
+  if (!problem.empty()) Fail(path, problem);
+  const OutputTarget target = ResolveOutput(path);
+  if (target.kind == OutputTarget::kSpecialFile ||
+      target.kind == OutputTarget::kStandardOutput) {
+    exr.Commit();
+    return;
+  }
+  OutputFile copy(target.path + ".json");
+  copy.Write(index_text);
+  exr.Commit();
+  copy.Commit();
 }
 
 ParamMipmap ReadParamMipmap(const std::string& path) {
-  // The EXR first: the file the user named.
-  std::error_code error;
-  if (!std::filesystem::exists(path, error)) {
-    Fail(path, std::string("cannot read: ") + std::strerror(ENOENT));
-  }
-  if (!std::filesystem::exists(path + ".json", error)) {
-    Fail(path + ".json",
-         "missing: the JSON index of the parameter mip map " + path +
-             " (written beside it by clothfit fit; keep the two together)");
-  }
-  const Index index = ReadIndex(path + ".json");
+  const std::string problem = RegularFileProblem(path);
+  if (!problem.empty()) Fail(path, "cannot read: " + problem);
   ParamMipmap mipmap;
-  mipmap.channels = index.channels;
-  mipmap.metadata_json = index.metadata_json;
   try {
-    ReadExr(path, index, &mipmap);
+    ReadExr(path, &mipmap);
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {

@@ -11,6 +11,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/json_text_internal.h"
 #include "io/text_util.h"
 
 namespace clothfit {
@@ -218,25 +219,6 @@ void AppendPretty(const json& j, int indent, std::string* out) {
   *out += j.dump();
 }
 
-json ParseJson(const std::string& text, const std::string& name) {
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    // A parse error's message carries "at line L, column C" and the bytes
-    // last read (escaped: they may not be UTF-8); a number too large for a
-    // double is an out_of_range error (406) without a position.
-    std::string what = text_util::Printable(e.what());
-    const size_t pos = what.find("parse error");
-    const size_t bracket = what.find("] ");
-    if (pos != std::string::npos) {
-      what = what.substr(pos);
-    } else if (bracket != std::string::npos) {
-      what = what.substr(bracket + 2);
-    }
-    throw InputError(name + ": invalid JSON: " + what);
-  }
-}
-
 }  // namespace
 
 std::optional<HoleMethod> ParseHoleMethod(const std::string& text) {
@@ -247,7 +229,7 @@ std::optional<HoleMethod> ParseHoleMethod(const std::string& text) {
 }
 
 ParamFile ParseParamFile(const std::string& text, const std::string& name) {
-  const json root = ParseJson(text, name);
+  const json root = ParseJsonText<json>(text, name);
   ObjectReader r(root, name, "");
   ParamFile out;
   const std::string model = r.String("model");

@@ -96,6 +96,7 @@ ReadTableResult ReadTable(const std::string& path,
       start = end + 1;
     }
     pending.append(chunk.substr(start));
+    parser.CheckLineLength(pending.size());
     if (!reserved && parser.rows() > 0) {
       reserved = true;
       const double per_byte = static_cast<double>(parser.rows()) / bytes_read;

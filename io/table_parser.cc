@@ -206,7 +206,16 @@ void TableParser::ParseHeader(std::string_view text, int line) {
   table.has_normal = Has(kNormalX);
 }
 
+void TableParser::CheckLineLength(size_t bytes) const {
+  if (bytes > kMaxLineBytes) {
+    Fail(line_ + 1, 0,
+         "line longer than " + std::to_string(kMaxLineBytes >> 20) +
+             " MiB (the limit of a table line; is this a table?)");
+  }
+}
+
 void TableParser::Line(std::string_view content) {
+  CheckLineLength(content.size());
   ++line_;
   // A UTF-8 byte order mark (spreadsheet exports) is not part of the data.
   if (line_ == 1 && content.substr(0, 3) == "\xEF\xBB\xBF") {

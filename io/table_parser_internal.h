@@ -67,6 +67,10 @@ bool IsRecognisedMetaKey(const std::string& key);
 // Parsing state shared by the header and row readers.
 class TableParser {
  public:
+  // Longest line of a table (a row of clothfit's columns is under 1 KiB): a
+  // file without line breaks is refused before it fills the memory.
+  static constexpr size_t kMaxLineBytes = size_t{1} << 20;
+
   TableParser(const std::string& name, const ReadTableOptions& options)
       : name_(name), options_(options) {}
 
@@ -74,12 +78,17 @@ class TableParser {
   // Line by line (without its '\n'), then Finish: what Parse does, for a
   // file read piece by piece.
   void Line(std::string_view content);
+  // Throws "FILE:LINE: line longer than ..." when the line being read is
+  // already `bytes` long and that is more than kMaxLineBytes: a reader
+  // checks before it gathers more of one line.
+  void CheckLineLength(size_t bytes) const;
   ReadTableResult Finish();
   size_t rows() const { return result_.table.rows.size(); }
   void Reserve(size_t rows) { result_.table.rows.reserve(rows); }
 
  private:
-  [[noreturn]] void Fail(int line, int column, const std::string& problem) {
+  [[noreturn]] void Fail(int line, int column,
+                         const std::string& problem) const {
     throw InputError(FormatLocation(name_, line, column) + ": " + problem);
   }
 

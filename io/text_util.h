@@ -27,6 +27,11 @@ std::string Lower(std::string_view text);
 // written as \xNN: safe to print in a one-line message.
 std::string Printable(std::string_view text);
 
+// `text` with every control byte (below 0x20, and 0x7f: a newline in a file
+// name) written as \xNN, other bytes (UTF-8 names) kept: a message stays on
+// one line.
+std::string EscapeControl(std::string_view text);
+
 // Quotes (part of) a field for an error message: printable ASCII is kept,
 // other bytes are escaped, fields longer than kMaxQuotedLength are shortened.
 std::string Quote(std::string_view text);

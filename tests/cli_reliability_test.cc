@@ -130,5 +130,133 @@ TEST_F(CliReliabilityTest, FailedWriteOfStandardOutputIsAnError) {
   }
 }
 
+// A parameter file nested 70,000 levels deep crashed every reader (eval,
+// render, fit --init, holes eval); a key given twice was read as its last
+// value (a second "model" then reported "key 'tau': unknown key").
+TEST_F(CliReliabilityTest, DeepOrRepeatedJsonIsBadInput) {
+  RunResult r = RunClothfit(dir_, {"preset", "linen_plain"});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const std::string preset = r.out;
+  const size_t close = preset.rfind('}');
+  ASSERT_NE(close, std::string::npos);
+  WriteText(dir_ / "deep.json", preset.substr(0, close) +
+                                    ", \"fit\": " + std::string(70000, '[') +
+                                    std::string(70000, ']') + "}\n");
+  WriteText(
+      dir_ / "deep_objects.json", preset.substr(0, close) + ", \"fit\": " + [] {
+        std::string nest;
+        for (int i = 0; i < 200000; ++i) nest += "{\"a\":";
+        return nest + "1" + std::string(200000, '}');
+      }() + "}\n");
+  std::string twice = preset;
+  twice.replace(twice.find("\"model\": \"cloth\""), 17,
+                "\"model\": \"cloth\", \"model\": \"slab\"");
+  WriteText(dir_ / "twice.json", twice);
+  WriteText(dir_ / "d.csv", "theta_i,phi_i,theta_o,phi_o\n30,0,30,180\n");
+  ASSERT_EQ(RunClothfit(dir_, {"synth", "--preset", "linen_plain", "--rows",
+                               "40", "--out", P("t.csv")})
+                .status,
+            0);
+  WriteText(dir_ / "mask.pgm", "P2\n2 2\n255\n0 255\n255 0\n");
+  for (const char* file : {"deep.json", "deep_objects.json", "twice.json"}) {
+    SCOPED_TRACE(file);
+    const std::string problem = std::string(file) == "twice.json"
+                                    ? "key 'model' appears twice"
+                                    : "JSON nested deeper than 64 levels";
+    const std::vector<std::vector<std::string>> commands = {
+        {"eval", "--params", P(file), "--dirs", P("d.csv"), "--out",
+         P("o.csv")},
+        {"render", "--params", P(file), "--out", P("r.exr"), "--size", "8"},
+        {"fit", "--model", "cloth", "--init", P(file), "--data", P("t.csv"),
+         "--out", P("o.json")},
+        {"holes", "eval", "--mask", P("mask.pgm"), "--params", P(file),
+         "--dirs", P("d.csv"), "--out", P("o.csv")},
+    };
+    for (const std::vector<std::string>& args : commands) {
+      ExpectBadInput(dir_, args, {P(file), problem});
+    }
+  }
+}
+
+// Devices and files without line breaks were read whole: a manifest naming
+// /dev/zero as an image never ended, --dirs /dev/zero read 1.2 GB and
+// --params /dev/zero 2.2 GB before "out of memory".
+TEST_F(CliReliabilityTest, EndlessInputsAreBoundedBadInput) {
+  if (!fs::exists("/dev/zero")) GTEST_SKIP() << "no /dev/zero";
+  RunResult r = RunClothfit(dir_, {"synth", "--gonio", "plain", "--texels", "2",
+                                   "--directions", "2", "--stack", P("m.csv")});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  std::string manifest = ReadText(dir_ / "m.csv");
+  const size_t image = manifest.find("m_0000.exr");
+  ASSERT_NE(image, std::string::npos);
+  WriteText(dir_ / "zero.csv", manifest.replace(image, 10, "/dev/zero"));
+  ExpectBadInput(
+      dir_,
+      {"fit", "--model", "lafortune", "--stack", P("zero.csv"), "--out",
+       P("z.exr")},
+      {"/dev/zero: cannot read image: not a regular file", "zero.csv:"});
+  WriteText(dir_ / "d.csv", "theta_i,phi_i,theta_o,phi_o\n30,0,30,180\n");
+  ExpectBadInput(dir_,
+                 {"eval", "--params", "/dev/zero", "--dirs", P("d.csv"),
+                  "--out", P("o.csv")},
+                 {"/dev/zero: larger than the 64 MiB limit"});
+  ExpectBadInput(dir_,
+                 {"eval", "--preset", "linen_plain", "--dirs", "/dev/zero",
+                  "--out", P("o.csv")},
+                 {"/dev/zero:1: line longer than 1 MiB"});
+  // A long line in a file, after good ones: its line number.
+  WriteText(dir_ / "long.csv", "theta_i,phi_i,theta_o,phi_o\n30,0,30,180\n" +
+                                   std::string(3 << 20, '1') + "\n");
+  ExpectBadInput(dir_,
+                 {"eval", "--preset", "linen_plain", "--dirs", P("long.csv"),
+                  "--out", P("o.csv")},
+                 {"long.csv:3: line longer than 1 MiB"});
+}
+
+// Fits that could not be what was asked: a parameter both fixed and free
+// (it ran 0 iterations and said "converged"), one measurement repeated
+// 100,000 times (exit 0, while 3 such rows were exit 1), a 5-lobe start for
+// a fit of at most 3 (the summary said 5, the file held 3).
+TEST_F(CliReliabilityTest, ContradictoryFitRequestsAreRefused) {
+  ASSERT_EQ(RunClothfit(dir_, {"synth", "--preset", "linen_plain", "--rows",
+                               "200", "--out", P("t.csv")})
+                .status,
+            0);
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "thread", "--data", P("t.csv"), "--fix",
+                  "eta", "--free", "eta", "--out", P("o.json")},
+                 {"--fix and --free both name 'eta'"});
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "thread", "--data", P("t.csv"), "--free",
+                  "eta", "--fix", "eta,kd", "--out", P("o.json")},
+                 {"--fix and --free both name 'eta'"});
+
+  std::string same = "theta_i,phi_i,theta_o,phi_o,value\n";
+  for (int i = 0; i < 100000; ++i) same += "30,0,30,180,0.1\n";
+  WriteText(dir_ / "same.csv", same);
+  const RunResult r = RunClothfit(dir_, {"fit", "--model", "thread", "--data",
+                                         P("same.csv"), "--out", P("o.json")});
+  EXPECT_EQ(r.status, 1) << Describe(r);
+  EXPECT_NE(r.err.find("100000 residual(s) at 1 distinct one(s) cannot "
+                       "determine 5 free parameters"),
+            std::string::npos)
+      << r.err;
+
+  const RunResult lobes = RunClothfit(
+      dir_, {"fit", "--model", "lafortune", "--lobes", "3", "--no-lut",
+             "--data", P("t.csv"), "--out", P("l3.json")});
+  ASSERT_TRUE(fs::exists(dir_ / "l3.json")) << Describe(lobes);
+  std::string five = ReadText(dir_ / "l3.json");
+  const size_t first = five.find("{", five.find("\"lobes\""));
+  const size_t end = five.find("}", first);
+  const std::string lobe = five.substr(first, end + 1 - first);
+  five.insert(end + 1, ", " + lobe + ", " + lobe);
+  WriteText(dir_ / "l5.json", five);
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "lafortune", "--init", P("l5.json"),
+                  "--no-lut", "--data", P("t.csv"), "--out", P("o.json")},
+                 {"l5.json: key 'lobes': 5 lobes; the fit fits 0 to 3"});
+}
+
 }  // namespace
 }  // namespace clothfit

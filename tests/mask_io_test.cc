@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <string>
@@ -105,7 +106,19 @@ TEST(MaskIoTest, TilesAtItsBorders) {
 TEST(MaskIoTest, ClearErrors) {
   const fs::path dir = TestDir();
   const std::string missing = (dir / "missing.png").string();
-  ExpectHas(ErrorOf([&] { ReadMask(missing); }), {missing, "no such file"});
+  ExpectHas(ErrorOf([&] { ReadMask(missing); }),
+            {missing, "No such file or directory"});
+  // A pipe or device is not taken for a missing file, and not opened (an
+  // image library seeks; a pipe would block).
+  const std::string fifo = (dir / "fifo.png").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ExpectHas(ErrorOf([&] { ReadMask(fifo); }), {fifo, "not a regular file"});
+  ExpectHas(ErrorOf([&] { ReadMask("/dev/zero"); }),
+            {"/dev/zero", "not a regular file"});
+  const std::string loop = (dir / "loop.png").string();
+  fs::create_symlink(loop, loop);
+  ExpectHas(ErrorOf([&] { ReadMask(loop); }),
+            {loop, "Too many levels of symbolic links"});
   const std::string text = (dir / "text.png").string();
   std::ofstream(text) << "not an image\n";
   ExpectHas(ErrorOf([&] { ReadMask(text); }), {text, "cannot read mask"});

@@ -1,5 +1,8 @@
 #include "io/param_mipmap.h"
 
+#include <ImfHeader.h>
+#include <ImfTiledInputFile.h>
+#include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -20,6 +23,21 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path TestDir() { return testing_util::FreshTestDir("param_mipmap_test_"); }
+
+// Rewrites `path` as clothfit 0.3 wrote it: without the index in its header,
+// which then comes from the .exr.json beside it.
+void StripHeaderIndex(const std::string& path) {
+  const std::string legacy = path + ".legacy";
+  {
+    Imf::TiledInputFile in(path.c_str());
+    Imf::Header header = in.header();
+    ASSERT_NE(header.find("clothfit:index"), header.end());
+    header.erase("clothfit:index");
+    Imf::TiledOutputFile out(legacy.c_str(), header);
+    out.copyPixels(in);
+  }
+  fs::rename(legacy, path);
+}
 
 // A mip map of random values with `channels` channels over a width x height
 // base, down to 1 x 1.
@@ -229,8 +247,15 @@ TEST(ParamMipmapTest, MissingFiles) {
   std::string error = ErrorOf([&] { ReadParamMipmap(path); });
   EXPECT_EQ(error.rfind(path + ": cannot read", 0), 0u) << error;
 
-  // The index alone missing: named, with what it is.
+  // The EXR is complete alone: its index is in its header.
   WriteParamMipmap(RandomMipmap(4, 4, 3), path);
+  fs::remove(path + ".json");
+  EXPECT_EQ(ReadParamMipmap(path).channels.size(), 3u);
+
+  // A file of clothfit 0.3 (no index in its header) without its index
+  // copy: named, with what it is.
+  WriteParamMipmap(RandomMipmap(4, 4, 3), path);
+  StripHeaderIndex(path);
   fs::remove(path + ".json");
   ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }),
             {path + ".json: missing", "JSON index", "keep the two together"});
@@ -246,6 +271,7 @@ TEST(ParamMipmapTest, BadIndex) {
   const std::string path = (dir / "p.exr").string();
   const std::string index_path = path + ".json";
   WriteParamMipmap(RandomMipmap(8, 4, 3), path);
+  StripHeaderIndex(path);  // the index checks, on the .exr.json of 0.3
   const std::string good = ReadFileToString(index_path);
   auto with_index = [&](const std::string& text) {
     WriteFileAtomically(index_path, text);
@@ -284,6 +310,23 @@ TEST(ParamMipmapTest, BadIndex) {
       (WriteFileAtomically(index_path, replaced(",\n    \"lut.0.B\"", "")),
        ReadParamMipmap(path));
   EXPECT_EQ(subset.channels.size(), 2u);
+}
+
+// The header's index is the one read: an .exr.json from another run (a kill
+// between the renames, two writers racing) or a broken one changes nothing.
+TEST(ParamMipmapTest, HeaderIndexIsAuthoritative) {
+  const fs::path dir = TestDir();
+  const std::string a = (dir / "a.exr").string();
+  const std::string b = (dir / "b.exr").string();
+  WriteParamMipmap(RandomMipmap(8, 4, 3, 1), a);
+  WriteParamMipmap(RandomMipmap(4, 4, 6, 2), b);
+  fs::copy_file(b + ".json", a + ".json", fs::copy_options::overwrite_existing);
+  const ParamMipmap read = ReadParamMipmap(a);
+  EXPECT_EQ(read.channels.size(), 3u);
+  EXPECT_EQ(read.levels[0].width, 8);
+  EXPECT_EQ(read.levels[0].data[0], RandomMipmap(8, 4, 3, 1).levels[0].data[0]);
+  WriteFileAtomically(a + ".json", "{not json");
+  EXPECT_EQ(ReadParamMipmap(a).channels.size(), 3u);
 }
 
 TEST(ParamMipmapTest, NotAMipmappedExr) {
