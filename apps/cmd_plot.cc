@@ -62,6 +62,14 @@ int RunPlot(int argc, char** argv) {
     }
     incidences.push_back(deg);
   }
+  // A panel each, side by side: more would not be readable, and ~3000 made
+  // an image too wide for the PNG encoder.
+  constexpr size_t kMaxPanels = 16;
+  if (incidences.size() > kMaxPanels) {
+    args.Fail("option '--incidence-deg': at most " +
+              std::to_string(kMaxPanels) + " angles (a panel each), got " +
+              std::to_string(incidences.size()));
+  }
   // In-plane unit vector towards the light's azimuth, and the normal of the
   // plane of incidence.
   const glm::dvec3 u(std::cos(phi), std::sin(phi), 0.0);

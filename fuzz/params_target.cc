@@ -7,6 +7,7 @@
 #include "fuzz/fuzz_util.h"
 #include "io/input_error.h"
 #include "io/params_json.h"
+#include "models/evaluate.h"
 
 namespace clothfit {
 namespace {
@@ -69,6 +70,30 @@ void CheckHoles(const ParamFile& file) {
           "threshold in (0, 1]");
 }
 
+// A model that was read is finite everywhere on the hemisphere, grazing
+// included (its ranges promise it; writers refuse anything else): light and
+// view on a grid of polar angles up to 89.99 degrees and azimuths, in both
+// quantities a reflectance file is evaluated in.
+void CheckFiniteEverywhere(const ParamFile& file) {
+  if (std::holds_alternative<HolesModel>(file.params)) return;  // no mask
+  const double thetas[] = {0.0, 0.3, 0.9, 1.3, 1.55, 1.5706};
+  const double phis[] = {0.0, 1.0, 2.5, 3.14159, 4.4};
+  for (const double ti : thetas) {
+    for (const double to : thetas) {
+      for (const double po : phis) {
+        const glm::dvec3 wi(std::sin(ti), 0.0, std::cos(ti));
+        const glm::dvec3 wo(std::sin(to) * std::cos(po),
+                            std::sin(to) * std::sin(po), std::cos(to));
+        for (const Quantity q : {Quantity::kBrdf, Quantity::kTransmittance}) {
+          const glm::dvec3 f = Evaluate(file.params, wi, wo, q);
+          Require(Finite(f.x) && Finite(f.y) && Finite(f.z),
+                  "the model is finite on the hemisphere");
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void FuzzParams(const uint8_t* data, size_t size) {
@@ -76,6 +101,7 @@ void FuzzParams(const uint8_t* data, size_t size) {
   try {
     const ParamFile file = ParseParamFile(text, "fuzz.json");
     CheckHoles(file);
+    CheckFiniteEverywhere(file);
     CheckRoundTrip(file);
   } catch (const InputError&) {
     // the expected answer to bad input

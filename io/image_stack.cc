@@ -270,6 +270,18 @@ Image ReadImage(const std::string& path, const std::string& manifest,
          "cannot read image: " + OneLineMessage(in->geterror()) + listed);
   }
   in->close();
+  // A measured value that is not a number (a dead pixel, a failed HDR
+  // merge) is the image's fault: named here, not later as a texel's fit.
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    if (std::isfinite(image.pixels[i])) continue;
+    const size_t pixel = i / static_cast<size_t>(image.channels);
+    Fail(path, 0, 0,
+         "pixel (" + std::to_string(pixel % image.width) + ", " +
+             std::to_string(pixel / image.width) + ") channel " +
+             std::to_string(i % image.channels) + " is " +
+             (std::isnan(image.pixels[i]) ? "NaN" : "infinite") +
+             " (a measurement is a finite number)" + listed);
+  }
   return image;
 }
 

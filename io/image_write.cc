@@ -69,6 +69,20 @@ std::string PairLabel(size_t pair, const TableRow& row) {
 void WriteImage(const std::string& path, int width, int height,
                 int colour_channels, bool with_alpha, bool float_pixels,
                 const std::vector<float>& pixels) {
+  // No image holds a NaN or infinity: a renderer would show it as black or
+  // as a firefly, and clothfit's readers refuse it.
+  const int stride = colour_channels + (with_alpha ? 1 : 0);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    if (std::isfinite(pixels[i])) continue;
+    const size_t pixel = i / static_cast<size_t>(std::max(stride, 1));
+    const size_t row_length = static_cast<size_t>(std::max(width, 1));
+    Fail(path, 0, 0,
+         "not written: pixel (" + std::to_string(pixel % row_length) + ", " +
+             std::to_string(pixel / row_length) + ") channel " +
+             std::to_string(i % stride) + " is " +
+             (std::isnan(pixels[i]) ? "NaN" : "infinite") +
+             " (the model gives no finite value there)");
+  }
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
   if (!out) {
     Fail(path, 0, 0, "cannot write image: " + OneLineMessage(OIIO::geterror()));

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -59,6 +60,27 @@ std::string BaseName(const std::string& path) {
 }
 
 // Checks sizes and names; `path` is used in messages.
+// "" when every value is finite, else where the first one that is not
+// lies: "channel 'lobe0.N.R' at level 0, texel (3, 4) is NaN".
+std::string FirstNonFinite(const ParamMipmap& mipmap) {
+  for (size_t level = 0; level < mipmap.levels.size(); ++level) {
+    const ParamImage& image = mipmap.levels[level];
+    for (size_t c = 0; c < image.data.size(); ++c) {
+      const std::vector<float>& values = image.data[c];
+      for (size_t i = 0; i < values.size(); ++i) {
+        if (std::isfinite(values[i])) continue;
+        const size_t w = static_cast<size_t>(std::max(image.width, 1));
+        return "channel '" +
+               (c < mipmap.channels.size() ? mipmap.channels[c] : "?") +
+               "' at level " + std::to_string(level) + ", texel (" +
+               std::to_string(i % w) + ", " + std::to_string(i / w) + ") is " +
+               (std::isnan(values[i]) ? "NaN" : "infinite");
+      }
+    }
+  }
+  return "";
+}
+
 void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
   if (mipmap.channels.empty()) Fail(path, "param mip map has no channels");
   std::set<std::string> names;
@@ -332,6 +354,8 @@ void ReadExr(const std::string& path, ParamMipmap* mipmap) {
 void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
   if (path.empty()) Fail(path, "cannot write: empty path");
   ValidateMipmap(mipmap, path);
+  const std::string non_finite = FirstNonFinite(mipmap);
+  if (!non_finite.empty()) Fail(path, "not written: " + non_finite);
   json metadata;
   try {
     metadata =
@@ -382,6 +406,10 @@ ParamMipmap ReadParamMipmap(const std::string& path) {
   ParamMipmap mipmap;
   try {
     ReadExr(path, &mipmap);
+    const std::string non_finite = FirstNonFinite(mipmap);
+    if (!non_finite.empty()) {
+      Fail(path, non_finite + " (a parameter mip map holds finite values)");
+    }
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {

@@ -418,6 +418,13 @@ std::string FormatParamFile(const ParamFile& file) {
 }
 
 void WriteParamFile(const ParamFile& file, const std::string& path) {
+  // What is written must read back: the model's ranges keep it finite over
+  // the hemisphere (a holes file's mask is checked where it is read).
+  const std::string e =
+      std::holds_alternative<HolesModel>(file.params)
+          ? ValidateParams(std::get<HolesModel>(file.params).params)
+          : ValidateModel(file.params);
+  if (!e.empty()) throw InputError(path + ": not written: " + e);
   WriteFileAtomically(path, FormatParamFile(file));
 }
 

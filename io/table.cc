@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -208,7 +209,39 @@ std::string FormatTable(const MeasurementTable& table) {
   return out;
 }
 
+namespace {
+
+// Throws unless every number of the rows is one ReadTable reads back: finite,
+// and values, sigmas and weights at most kMaxTableMagnitude in magnitude.
+void CheckRowsReadable(const MeasurementTable& table, const std::string& path) {
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const TableRow& row = table.rows[i];
+    const double numbers[] = {row.value.x, row.value.y, row.value.z,
+                              row.sigma.x, row.sigma.y, row.sigma.z,
+                              row.weight,  row.alpha};
+    bool ok = std::isfinite(glm::dot(row.wi, row.wi)) &&
+              std::isfinite(glm::dot(row.wo, row.wo)) &&
+              std::isfinite(glm::dot(row.normal, row.normal));
+    for (const double x : numbers) ok = ok && std::abs(x) <= kMaxTableMagnitude;
+    if (ok) continue;
+    std::ostringstream why;
+    why.precision(6);
+    why << path << ": not written: row " << i + 1;
+    if (row.source_line > 0) why << " (line " << row.source_line << " read)";
+    why << " has value (" << row.value.x << ", " << row.value.y << ", "
+        << row.value.z << ") at wi (" << row.wi.x << ", " << row.wi.y << ", "
+        << row.wi.z << "), wo (" << row.wo.x << ", " << row.wo.y << ", "
+        << row.wo.z << "): a table holds finite numbers, values at most "
+        << kMaxTableMagnitude
+        << " in magnitude (the model's parameters give none there)";
+    throw InputError(why.str());
+  }
+}
+
+}  // namespace
+
 void WriteTable(const MeasurementTable& table, const std::string& path) {
+  CheckRowsReadable(table, path);
   WriteFileAtomically(path, FormatTable(table));
 }
 

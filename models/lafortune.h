@@ -23,6 +23,7 @@
 // the same way.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -48,6 +49,9 @@ namespace clothfit {
 // The largest LafortuneLobeReach over N (1.06923 at N = 12.94), the
 // outer fit bound of |C|.
 inline constexpr double kLafortuneMaxReach = 1.0693;
+// Largest |Cx|, |Cy|, |Cz| a file may hold: their products with the
+// directions add up without overflow.
+inline constexpr double kLafortuneMaxWeight = 1e100;
 
 // The fits' bound on |Cx|, |Cy|, |Cz| of a lobe with exponent n: the lobe's
 // peak |C|_inf^N is then at most (N + 2) / (2 pi) (the table's comment),
@@ -65,8 +69,8 @@ inline constexpr ParamInfo kLafortuneDiffuse = {
     "diffuse",
     "1/sr",
     "diffuse term rho_d of the bracket (a BRDF value; its albedo is "
-    "pi rho_d, at most 1 in a fit)",
-    {0.0, kInfinity},
+    "pi rho_d, at most 1 in a fit; at most 1e3 in a file)",
+    {0.0, 1e3},
     0.0,
     1.0 / kPi,
     true,
@@ -76,8 +80,8 @@ inline constexpr ParamInfo kLafortuneDiffuse = {
 inline constexpr ParamInfo kLafortuneCx = {
     "Cx",
     "unitless",
-    "weight of l_x v_x in a lobe (any sign)",
-    {-kInfinity, kInfinity},
+    "weight of l_x v_x in a lobe (any sign, |C| <= 1e100)",
+    {-kLafortuneMaxWeight, kLafortuneMaxWeight},
     -kLafortuneMaxReach,
     kLafortuneMaxReach,
     true,
@@ -87,8 +91,8 @@ inline constexpr ParamInfo kLafortuneCx = {
 inline constexpr ParamInfo kLafortuneCy = {
     "Cy",
     "unitless",
-    "weight of l_y v_y in a lobe (any sign)",
-    {-kInfinity, kInfinity},
+    "weight of l_y v_y in a lobe (any sign, |C| <= 1e100)",
+    {-kLafortuneMaxWeight, kLafortuneMaxWeight},
     -kLafortuneMaxReach,
     kLafortuneMaxReach,
     true,
@@ -98,8 +102,8 @@ inline constexpr ParamInfo kLafortuneCy = {
 inline constexpr ParamInfo kLafortuneCz = {
     "Cz",
     "unitless",
-    "weight of l_z v_z in a lobe (any sign)",
-    {-kInfinity, kInfinity},
+    "weight of l_z v_z in a lobe (any sign, |C| <= 1e100)",
+    {-kLafortuneMaxWeight, kLafortuneMaxWeight},
     -kLafortuneMaxReach,
     kLafortuneMaxReach,
     true,
@@ -116,6 +120,11 @@ inline constexpr ParamInfo kLafortuneN = {"N",
                                           {10.0, 10.0, 10.0},
                                           "Daubert et al. 2001, eq. 2 (N)",
                                           3};
+// The lobe's largest value, max(|Cx|, |Cy|, |Cz|)^N over the hemisphere,
+// may be at most 1e100 (N log10 max|C| <= 100): a file's lobe with Cx =
+// -1e200 evaluated to infinity.
+inline constexpr double kLafortuneMaxLog10Peak = 100.0;
+
 // Most lobes a parameter set may have (the fits use 0 to 3).
 inline constexpr int kMaxLafortuneLobes = 16;
 
@@ -190,8 +199,23 @@ inline std::string ValidateLafortuneParams(const LafortuneParams& p) {
            " lobes, got " + std::to_string(p.lobes.size());
   }
   for (size_t k = 0; k < p.lobes.size(); ++k) {
-    const std::string e = ValidateParams(p.lobes[k]);
+    const LafortuneLobe& lobe = p.lobes[k];
+    const std::string e = ValidateParams(lobe);
     if (!e.empty()) return "lobes[" + std::to_string(k) + "]." + e;
+    for (int c = 0; c < 3; ++c) {
+      const double reach = std::max(
+          {std::abs(lobe.cx[c]), std::abs(lobe.cy[c]), std::abs(lobe.cz[c])});
+      if (reach > 1.0 &&
+          lobe.n[c] * std::log10(reach) > kLafortuneMaxLog10Peak) {
+        std::ostringstream msg;
+        msg.precision(4);
+        msg << "lobes[" << k << "]: channel " << c
+            << ": max(|Cx|, |Cy|, |Cz|)^N = 10^"
+            << lobe.n[c] * std::log10(reach)
+            << " overflows; it must be at most 1e100";
+        return msg.str();
+      }
+    }
   }
   return "";
 }
@@ -347,8 +371,9 @@ inline std::string ValidateViewTable(const ViewTable& t) {
       return "lut.views[" + std::to_string(k) + "]: must be a non-zero vector";
     }
     for (int c = 0; c < 3; ++c) {
-      if (!std::isfinite(t.color[k][c])) {
-        return "lut.color[" + std::to_string(k) + "]: must be finite";
+      if (!(std::abs(t.color[k][c]) <= 1e3)) {
+        return "lut.color[" + std::to_string(k) +
+               "]: must be finite, at most 1e3 in magnitude";
       }
     }
     if (!(t.alpha[k] >= 0.0 && t.alpha[k] <= 1.0)) {

@@ -31,6 +31,11 @@
 
 namespace clothfit {
 
+// Narrowest Gaussian a thread may have: far below what a measurement
+// resolves, and wide enough that 1 / gamma^2 cannot overflow (gamma =
+// 1e-300 degrees made the lobe inf * 0 = NaN).
+inline constexpr double kThreadMinGammaDeg = 0.01;
+
 // The parameter table of a thread (models/params.h). Defaults: Linen
 // Plain (Table 2).
 inline constexpr ParamInfo kThreadEta = {
@@ -52,8 +57,9 @@ inline constexpr ParamInfo kThreadKd = {
 inline constexpr ParamInfo kThreadGammaS = {
     "gamma_s_deg",
     "degrees",
-    "width of the surface-reflection Gaussian",
-    {0.0, 90.0, true, false},
+    "width of the surface-reflection Gaussian (at least 0.01 degrees: "
+    "its normalisation 1 / gamma stays finite)",
+    {kThreadMinGammaDeg, 90.0},
     0.2,
     90.0,
     false,
@@ -63,20 +69,21 @@ inline constexpr ParamInfo kThreadGammaS = {
 inline constexpr ParamInfo kThreadGammaV = {
     "gamma_v_deg",
     "degrees",
-    "width of the volume-scattering Gaussian",
-    {0.0, 90.0, true, false},
+    "width of the volume-scattering Gaussian (at least 0.01 degrees)",
+    {kThreadMinGammaDeg, 90.0},
     0.2,
     90.0,
     false,
     {24.0},
     "Sadeghi et al. 2013, eq. 4 (gamma_v), Table 2",
     1};
-// Usually <= 1; the fit's upper bound 1e3 only keeps numbers finite.
+// Usually <= 1 (the fit's bound); a file may hold up to 1e3, which keeps
+// the model finite everywhere.
 inline constexpr ParamInfo kThreadAlbedo = {
     "albedo",
     "unitless",
     "volume-scattering albedo per channel",
-    {0.0, kInfinity},
+    {0.0, 1e3},
     0.0,
     1.0,
     true,

@@ -202,8 +202,9 @@ inline constexpr ParamInfo kModelScale = {
     "scale",
     "unitless",
     "factor on the whole model: 1 for absolute reflectance; the factor "
-    "a fit with --fit-scale found for data on an arbitrary scale",
-    {0.0, kInfinity, true, false},
+    "a fit with --fit-scale found for data on an arbitrary scale (at most "
+    "1e6, the fit's bound: the model stays finite)",
+    {0.0, 1e6, true, false},
     1e-6,
     1e6,
     false,

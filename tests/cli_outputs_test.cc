@@ -189,6 +189,13 @@ TEST_F(CliOutputsTest, MessagesNameTheProblem) {
                  {"plot", "--preset", "linen_plain", "--incidence-deg", "",
                   "--out", P("p.png")},
                  {"option '--incidence-deg' needs a value"});
+  std::string many = "0";
+  for (int i = 1; i < 3000; ++i) many += "," + std::to_string(i % 90);
+  ASSERT_EQ(Synth(P("t.csv")).status, 0);
+  ExpectBadInput(dir_,
+                 {"plot", "--preset", "linen_plain", "--data", P("t.csv"),
+                  "--incidence-deg", many, "--out", P("p.png")},
+                 {"at most 16 angles", "got 3000"});
   ExpectBadInput(dir_, {}, {"no command given", "clothfit --help"});
   // A newline in a file name stays inside the one line.
   ExpectBadInput(dir_,

@@ -5,9 +5,11 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tests/cli_test_util.h"
@@ -256,6 +258,77 @@ TEST_F(CliReliabilityTest, ContradictoryFitRequestsAreRefused) {
                  {"fit", "--model", "lafortune", "--init", P("l5.json"),
                   "--no-lut", "--data", P("t.csv"), "--out", P("o.json")},
                  {"l5.json: key 'lobes': 5 lobes; the fit fits 0 to 3"});
+}
+
+// Parameters whose model is not finite somewhere on the hemisphere wrote
+// -nan (thread gamma 1e-300 degrees) and inf (albedo 1e308, a Lafortune lobe
+// with |C| = 1e200) with exit 0, from eval, synth and render. The ranges now
+// keep every model finite; the check is at the boundary, naming the key.
+TEST_F(CliReliabilityTest, ModelsThatAreNotFiniteAreBadInput) {
+  WriteText(dir_ / "d.csv", "theta_i,phi_i,theta_o,phi_o\n30,0,30,180\n");
+  const std::string thread =
+      "{\"model\": \"thread\", \"eta\": 1.46, \"kd\": 0.3, ";
+  WriteText(dir_ / "narrow.json",
+            thread +
+                "\"gamma_s_deg\": 1e-300, \"gamma_v_deg\": 1e-300, "
+                "\"albedo\": [0.1, 0.1, 0.1]}");
+  WriteText(dir_ / "bright.json",
+            thread +
+                "\"gamma_s_deg\": 12, \"gamma_v_deg\": 24, "
+                "\"albedo\": [1e308, 0.1, 0.1]}");
+  const std::string lafortune =
+      "{\"model\": \"lafortune\", \"diffuse\": [0.1, 0.1, 0.1], "
+      "\"lobes\": [{\"Cy\": [-1, -1, -1], ";
+  WriteText(dir_ / "huge.json",
+            lafortune +
+                "\"Cx\": [-1e200, -1, -1], \"Cz\": [1e200, 1, 1], "
+                "\"N\": [2, 2, 2]}]}");
+  WriteText(dir_ / "power.json", lafortune +
+                                     "\"Cx\": [-3, -1, -1], \"Cz\": [3, 1, 1], "
+                                     "\"N\": [500, 2, 2]}]}");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"narrow.json", "key 'gamma_s_deg': must be in [0.01, 90]"},
+      {"bright.json", "key 'albedo': component 0 must be in [0, 1000]"},
+      {"huge.json", "key 'lobes[0].Cx': component 0 must be in [-1e+100"},
+      {"power.json", "key 'lobes[0]': channel 0: max(|Cx|, |Cy|, |Cz|)^N"},
+  };
+  for (const auto& [file, problem] : cases) {
+    SCOPED_TRACE(file);
+    ExpectBadInput(dir_,
+                   {"eval", "--params", P(file), "--dirs", P("d.csv"), "--out",
+                    P("o.csv")},
+                   {P(file), problem});
+    ExpectBadInput(dir_, {"synth", "--params", P(file), "--out", P("s.csv")},
+                   {P(file), problem});
+    ExpectBadInput(
+        dir_,
+        {"render", "--params", P(file), "--out", P("r.exr"), "--size", "8"},
+        {P(file), problem});
+  }
+}
+
+// An image stack with a NaN pixel: the fit exited 1 naming a texel and wrote
+// an all-zero map; the image is at fault, and named.
+TEST_F(CliReliabilityTest, AnImageWithANanPixelIsBadInput) {
+  // Portable float maps (2 x 2 rgb, little-endian, bottom row first).
+  auto pfm = [](bool with_nan) {
+    std::string bytes = "PF\n2 2\n-1.0\n";
+    for (int i = 0; i < 12; ++i) {
+      float v = with_nan && i == 4 ? std::nanf("") : 0.1f;
+      bytes.append(reinterpret_cast<const char*>(&v), sizeof(v));
+    }
+    return bytes;
+  };
+  WriteText(dir_ / "ok.pfm", pfm(false));
+  WriteText(dir_ / "nan.pfm", pfm(true));
+  WriteText(dir_ / "m.csv",
+            "# clothfit-stack 1\n# quantity: cosine_weighted\n"
+            "theta_i,phi_i,theta_o,phi_o,file\n30,0,30,180,ok.pfm\n"
+            "40,0,30,180,nan.pfm\n");
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "lafortune", "--stack", P("m.csv"),
+                  "--lobes", "1", "--no-lut", "--out", P("p.exr")},
+                 {"nan.pfm: pixel (1, 1) channel 1 is NaN", "m.csv:5"});
 }
 
 }  // namespace

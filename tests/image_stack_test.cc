@@ -447,11 +447,21 @@ TEST(ImageStackErrorTest, BadNormalMap) {
   ExpectHas(error_for("# note: x\n# normal_map: zero.exr\n"),
             {(dir / "zero.exr").string(), "pixel (3, 2)", "zero normal",
              manifest + ":2"});
-  std::vector<float> nan = up;
-  nan[3] = std::nanf("");  // pixel (1, 0)
-  write_exr("nan.exr", 5, 4, 3, nan);
-  ExpectHas(error_for("# normal_map: nan.exr\n"),
-            {(dir / "nan.exr").string(), "pixel (1, 0)", "non-finite"});
+  // clothfit writes no NaN: a portable float map (rows bottom first) with a
+  // NaN in column 1 of every row.
+  std::string pfm = "PF\n5 4\n-1.0\n";
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 5; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const float v =
+            x == 1 && c == 0 ? std::nanf("") : (c == 2 ? 1.0f : 0.0f);
+        pfm.append(reinterpret_cast<const char*>(&v), sizeof(v));
+      }
+    }
+  }
+  std::ofstream(dir / "nan.pfm", std::ios::binary) << pfm;
+  ExpectHas(error_for("# normal_map: nan.pfm\n"),
+            {(dir / "nan.pfm").string(), "pixel (1, 0) channel 0 is NaN"});
   ExpectHas(error_for("# normal_map:  \n"),
             {manifest + ":1:", "'normal_map'", "empty file name"});
   ExpectHas(error_for("# normal_map: up.exr\n# Normal_Map: up.exr\n"),

@@ -1,14 +1,18 @@
 #include "io/param_mipmap.h"
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfTiledInputFile.h>
 #include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -37,6 +41,43 @@ void StripHeaderIndex(const std::string& path) {
     out.copyPixels(in);
   }
   fs::rename(legacy, path);
+}
+
+// Rewrites `path` with its first value (level 0, the first channel in the
+// EXR's alphabetical order, texel (0, 0)) replaced by `value`: a file
+// clothfit's writer refuses to make.
+void PoisonFirstValue(const std::string& path, float value) {
+  const std::string poisoned = path + ".poisoned";
+  {
+    Imf::TiledInputFile in(path.c_str());
+    Imf::TiledOutputFile out(poisoned.c_str(), in.header());
+    for (int level = 0; level < in.numLevels(); ++level) {
+      const int w = in.levelWidth(level);
+      const int h = in.levelHeight(level);
+      std::vector<std::vector<float>> planes;
+      Imf::FrameBuffer frame;
+      for (auto it = in.header().channels().begin();
+           it != in.header().channels().end(); ++it) {
+        planes.emplace_back(static_cast<size_t>(w) * h);
+      }
+      size_t c = 0;
+      for (auto it = in.header().channels().begin();
+           it != in.header().channels().end(); ++it, ++c) {
+        frame.insert(
+            it.name(),
+            Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(planes[c].data()),
+                       sizeof(float), sizeof(float) * w));
+      }
+      in.setFrameBuffer(frame);
+      in.readTiles(0, in.numXTiles(level) - 1, 0, in.numYTiles(level) - 1,
+                   level);
+      if (level == 0) planes[0][0] = value;
+      out.setFrameBuffer(frame);
+      out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1,
+                     level);
+    }
+  }
+  fs::rename(poisoned, path);
 }
 
 // A mip map of random values with `channels` channels over a width x height
@@ -327,6 +368,27 @@ TEST(ParamMipmapTest, HeaderIndexIsAuthoritative) {
   EXPECT_EQ(read.levels[0].data[0], RandomMipmap(8, 4, 3, 1).levels[0].data[0]);
   WriteFileAtomically(a + ".json", "{not json");
   EXPECT_EQ(ReadParamMipmap(a).channels.size(), 3u);
+}
+
+// NaN and infinity are neither written nor read: a renderer would show
+// them as black texels or fireflies (an EXR holding NaN rendered NaN pixels).
+TEST(ParamMipmapTest, NonFiniteValuesAreRefused) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "p.exr").string();
+  ParamMipmap bad = RandomMipmap(4, 4, 3);
+  bad.levels[1].data[2][1] = std::numeric_limits<float>::quiet_NaN();
+  ExpectHas(ErrorOf([&] { WriteParamMipmap(bad, path); }),
+            {path, "not written", "channel 'lut.0.B' at level 1, texel (1, 0)",
+             "NaN"});
+  EXPECT_FALSE(fs::exists(path));
+  for (const float value : {std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::infinity()}) {
+    WriteParamMipmap(RandomMipmap(4, 4, 3), path);
+    PoisonFirstValue(path, value);
+    ExpectHas(ErrorOf([&] { ReadParamMipmap(path); }),
+              {path, "channel 'lut.0.B' at level 0, texel (0, 0) is",
+               std::isnan(value) ? "NaN" : "infinite"});
+  }
 }
 
 TEST(ParamMipmapTest, NotAMipmappedExr) {

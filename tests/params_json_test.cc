@@ -281,7 +281,8 @@ TEST(ParamsJsonTest, ScaleOfThreadAndClothIsOptionalKeptAndValidated) {
       kFileName);
   EXPECT_EQ(std::get<ClothParams>(cloth.params).scale, 2.5);
   EXPECT_NE(FormatParamFile(cloth).find("\"scale\": 2.5"), std::string::npos);
-  ExpectError(ThreadFile(ThreadKeys(), ", \"scale\": 0"), {"scale", "> 0"});
+  ExpectError(ThreadFile(ThreadKeys(), ", \"scale\": 0"),
+              {"scale", "(0, 1e+06]"});
   ExpectError(ThreadFile(ThreadKeys(), ", \"scale\": -1"), {"scale"});
   ExpectError(ClothFile(ClothThreadJson("u", "0.33"),
                         ClothThreadJson("v", "0.33", "\"offsets_deg\": [0]",

@@ -68,13 +68,15 @@ TEST(ParamTables, TheOtherEntriesAreConsistentToo) {
 TEST(ParamTables, ValidationNamesTheEntryAndItsRange) {
   ThreadParams t;
   t.gamma_s_deg = -1.0;
-  EXPECT_EQ(ValidateParams(t), "gamma_s_deg: must be in (0, 90], got -1");
+  EXPECT_EQ(ValidateParams(t), "gamma_s_deg: must be in [0.01, 90], got -1");
   t = ThreadParams();
   t.albedo.z = std::nan("");
-  EXPECT_EQ(ValidateParams(t), "albedo: component 2 must be >= 0, got nan");
+  EXPECT_EQ(ValidateParams(t),
+            "albedo: component 2 must be in [0, 1000], got nan");
   LafortuneLobe lobe;
   lobe.cy.x = HUGE_VAL;
-  EXPECT_EQ(ValidateParams(lobe), "Cy: component 0 must be finite, got inf");
+  EXPECT_EQ(ValidateParams(lobe),
+            "Cy: component 0 must be in [-1e+100, 1e+100], got inf");
 }
 
 }  // namespace
