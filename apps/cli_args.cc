@@ -89,7 +89,7 @@ void CommandArgs::Files(const std::vector<std::string>& inputs,
   outputs_ = outputs;
 }
 
-void CommandArgs::CheckFiles() const {
+void CommandArgs::CheckFiles(const NamedFile* derived) const {
   std::vector<NamedFile> inputs, outputs;
   for (const std::string& name : inputs_) {
     if (Has(name)) inputs.push_back({"--" + name, values_.at(name)});
@@ -97,7 +97,14 @@ void CommandArgs::CheckFiles() const {
   for (const std::string& name : outputs_) {
     if (Has(name)) outputs.push_back({"--" + name, values_.at(name)});
   }
+  if (derived != nullptr) outputs.push_back(*derived);
   CheckOutputsDistinct(outputs, inputs);
+}
+
+void CommandArgs::CheckDerivedOutput(const std::string& what,
+                                     const std::string& path) const {
+  const NamedFile derived{what, path};
+  CheckFiles(&derived);
 }
 
 bool CommandArgs::Has(const std::string& name) const {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.h"
+
 namespace clothfit {
 
 class CommandArgs {
@@ -29,6 +31,10 @@ class CommandArgs {
   // --chart, --error-map, --csv, --transmittance are written.
   void Files(const std::vector<std::string>& inputs,
              const std::vector<std::string>& outputs);
+  // The same check for an output the command derives from its options
+  // (render's PNG beside --out, a chart's CSV): `what` names it.
+  void CheckDerivedOutput(const std::string& what,
+                          const std::string& path) const;
 
   // Parses argv[first..]. Returns false when --help was given (the help
   // text has been printed to stdout). Throws InputError on bad usage.
@@ -56,7 +62,8 @@ class CommandArgs {
   std::vector<std::string> order_;
   std::map<std::string, Spec> specs_;
   std::map<std::string, std::string> values_;
-  void CheckFiles() const;
+  // Checks the files given, and `derived` (may be null) as an output.
+  void CheckFiles(const NamedFile* derived = nullptr) const;
 
   std::vector<std::string> positional_;
   std::vector<std::string> inputs_ = {"data",  "dirs", "params",  "init",

@@ -170,7 +170,9 @@ std::string CsvBeside(const CommandArgs& args, const std::string& option) {
   if (png.size() < 5 || png.substr(png.size() - 4) != ".png") {
     args.Fail("option '--" + option + "': the chart is a .png file");
   }
-  return png.substr(0, png.size() - 4) + ".csv";
+  const std::string csv = png.substr(0, png.size() - 4) + ".csv";
+  args.CheckDerivedOutput("the CSV beside --" + option, csv);
+  return csv;
 }
 
 std::vector<double> NumberList(const CommandArgs& args,

@@ -105,6 +105,7 @@ int RunRender(int argc, char** argv) {
   const std::string png = args.Has("png")
                               ? args.Get("png")
                               : out.substr(0, out.size() - 4) + ".png";
+  if (!args.Has("png")) args.CheckDerivedOutput("the PNG beside --out", png);
   PreviewOptions options;
   const long size = args.GetInt("size");
   if (size < 8 || size > 1024)

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,6 +139,28 @@ std::string Canonical(const std::string& path) {
   return error ? path : p.string();
 }
 
+// N when `path` is this process's /proc/self/fd/N (or /proc/PID/fd/N,
+// /dev/fd/N: its folder resolves to one of these).
+std::optional<int> OwnDescriptor(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  if (slash == std::string::npos || slash + 1 >= path.size()) {
+    return std::nullopt;
+  }
+  const std::string name = path.substr(slash + 1);
+  if (name.size() > 9 ||
+      name.find_first_not_of("0123456789") != std::string::npos) {
+    return std::nullopt;
+  }
+  char folder[PATH_MAX];
+  const std::string dir = slash == 0 ? "/" : path.substr(0, slash);
+  if (::realpath(dir.c_str(), folder) == nullptr) return std::nullopt;
+  const std::string own = "/proc/" + std::to_string(::getpid()) + "/fd";
+  if (folder != own && std::string(folder) != "/proc/self/fd") {
+    return std::nullopt;
+  }
+  return std::stoi(name);
+}
+
 }  // namespace
 
 void CheckOutputsDistinct(const std::vector<NamedFile>& outputs,
@@ -146,7 +169,7 @@ void CheckOutputsDistinct(const std::vector<NamedFile>& outputs,
     const NamedFile& out = outputs[i];
     if (out.path == "-") continue;
     const OutputTarget target = ResolveOutput(out.path);
-    if (target.kind == OutputTarget::kSpecialFile) continue;
+    if (target.direct()) continue;
     for (const NamedFile& in : inputs) {
       if (in.path.empty() || in.path == "-" ||
           !SameFile(target.path, in.path)) {
@@ -175,9 +198,13 @@ OutputTarget ResolveOutput(const std::string& path) {
   if (path.empty()) {
     throw InputError("'': cannot write: an output needs a file name");
   }
-  if (path == "-") return {path, OutputTarget::kStandardOutput};
+  if (path == "-") return {path, OutputTarget::kDescriptor, 1};
   std::string p = path;
   for (int hop = 0; hop < 40; ++hop) {
+    // /dev/stdout links to /proc/self/fd/1, whose own link ("pipe:[N]", or
+    // a file the shell opened) is not a path to follow: the descriptor is.
+    const std::optional<int> fd = OwnDescriptor(p);
+    if (fd) return {p, OutputTarget::kDescriptor, *fd};
     struct stat info;
     if (::lstat(p.c_str(), &info) != 0) {
       if (errno == ENOENT) return {p, OutputTarget::kNewFile};
@@ -202,8 +229,7 @@ OutputFile::OutputFile(const std::string& path)
     : path_(path), target_(ResolveOutput(path)) {
   // A device, pipe or standard output gets the content once it is complete,
   // copied from a file staged in the temporary directory.
-  const bool direct = target_.kind == OutputTarget::kSpecialFile ||
-                      target_.kind == OutputTarget::kStandardOutput;
+  const bool direct = target_.direct();
   std::string dir;
   if (direct) {
     const char* tmp = std::getenv("TMPDIR");
@@ -242,8 +268,7 @@ void OutputFile::Write(const std::string& content) {
 }
 
 void OutputFile::Commit() {
-  if (target_.kind == OutputTarget::kSpecialFile ||
-      target_.kind == OutputTarget::kStandardOutput) {
+  if (target_.direct()) {
     CopyToTarget();
     return;
   }
@@ -271,8 +296,8 @@ void OutputFile::Commit() {
 }
 
 void OutputFile::CopyToTarget() {
-  int out = 1;
-  if (target_.kind == OutputTarget::kStandardOutput) {
+  int out = target_.fd;
+  if (target_.kind == OutputTarget::kDescriptor) {
     std::cout.flush();  // what the command printed before comes first
     std::fflush(stdout);
   } else {
@@ -292,7 +317,10 @@ void OutputFile::CopyToTarget() {
     offset += got;
     error = WriteAll(out, buffer.data(), static_cast<size_t>(got));
   }
-  if (out != 1 && ::close(out) != 0 && error == 0) error = errno;
+  if (target_.kind != OutputTarget::kDescriptor && ::close(out) != 0 &&
+      error == 0) {
+    error = errno;
+  }
   if (error != 0) ThrowWriteError(path_, error);
 }
 
@@ -313,7 +341,10 @@ void WriteAtomicallyVia(
 
 void CheckWritable(const std::string& path) {
   const OutputTarget target = ResolveOutput(path);
-  if (target.kind == OutputTarget::kStandardOutput) return;
+  if (target.kind == OutputTarget::kDescriptor) {
+    if (::fcntl(target.fd, F_GETFL) < 0) ThrowWriteError(path, errno);
+    return;
+  }
   if (target.kind == OutputTarget::kSpecialFile) {
     if (::access(target.path.c_str(), W_OK) != 0) {
       ThrowWriteError(path, errno);

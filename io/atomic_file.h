@@ -20,9 +20,14 @@ namespace clothfit {
 
 // What an output path names, after following symbolic links.
 struct OutputTarget {
-  enum Kind { kNewFile, kRegularFile, kSpecialFile, kStandardOutput };
-  std::string path;  // the link's target for a symbolic link; "-" for stdout
+  // kDescriptor: one of this process's open files: "-" (standard output)
+  // and /dev/stdout, /dev/fd/N, /proc/self/fd/N.
+  enum Kind { kNewFile, kRegularFile, kSpecialFile, kDescriptor };
+  std::string path;  // the link's target for a symbolic link
   Kind kind = kNewFile;
+  int fd = -1;  // kDescriptor: the descriptor
+  // Written directly (no temporary file renamed over it).
+  bool direct() const { return kind == kSpecialFile || kind == kDescriptor; }
 };
 
 // Throws InputError "path: cannot write: reason" for an empty path, a

@@ -215,6 +215,20 @@ void WriteImageStack(const MeasurementTable& table,
   const int colour_channels = table.channels == 1 ? 1 : 3;
   const int channels = colour_channels + (with_alpha ? 1 : 0);
 
+  // The images written so far, removed again when a later one or the
+  // manifest cannot be written (a full disk): a failed run leaves no part
+  // of a stack.
+  struct Written {
+    std::vector<std::string> paths;
+    bool complete = false;
+    ~Written() {
+      std::error_code error;
+      for (const std::string& path : paths) {
+        if (!complete) fs::remove(path, error);
+      }
+    }
+  } written;
+
   std::string text = "# clothfit-stack 1\n";
   text += std::string("# quantity: ") + QuantityName(table.quantity) + "\n";
   text += "# units: degrees\n";
@@ -229,8 +243,10 @@ void WriteImageStack(const MeasurementTable& table,
             static_cast<float>(float_pixels ? n[c] : 0.5 * (n[c] + 1.0)));
       }
     }
-    WriteImage((folder.empty() ? fs::path(file) : folder / file).string(),
-               width, height, 3, false, float_pixels, pixels);
+    const std::string path =
+        (folder.empty() ? fs::path(file) : folder / file).string();
+    WriteImage(path, width, height, 3, false, float_pixels, pixels);
+    written.paths.push_back(path);  // only what this run replaced
     text += std::string("# ") + kNormalMapKey + ": " + file + "\n";
   }
   for (const auto& [key, value] : table.metadata) {
@@ -267,6 +283,7 @@ void WriteImageStack(const MeasurementTable& table,
     try {
       WriteImage(path, width, height, colour_channels, with_alpha, float_pixels,
                  pixels);
+      written.paths.push_back(path);
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& error) {
@@ -283,6 +300,7 @@ void WriteImageStack(const MeasurementTable& table,
             FormatNumber(Degrees(phi_o)) + "," + file + "\n";
   }
   WriteFileAtomically(manifest_path, text);
+  written.complete = true;
 }
 
 }  // namespace clothfit

@@ -389,8 +389,7 @@ void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
   const std::string problem = WriteExr(mipmap, exr.write_path(), index_text);
   if (!problem.empty()) Fail(path, problem);
   const OutputTarget target = ResolveOutput(path);
-  if (target.kind == OutputTarget::kSpecialFile ||
-      target.kind == OutputTarget::kStandardOutput) {
+  if (target.direct()) {
     exr.Commit();
     return;
   }

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -82,18 +83,29 @@ TEST_F(CliOutputsTest, DevicesAreWrittenDirectlyAndTheirErrorsReported) {
   EXPECT_TRUE(IsCharDevice("full.exr"));
 }
 
-TEST_F(CliOutputsTest, DashIsStandardOutput) {
-  const RunResult r = Synth("-", "5");
-  ASSERT_EQ(r.status, 0) << Describe(r);
-  EXPECT_EQ(r.out.rfind("# clothfit-table 1\n", 0), 0u) << r.out;
-  // The table: its '#' lines, the header and 5 rows.
-  size_t rows = 0;
-  for (size_t at = 0; at < r.out.size(); at = r.out.find('\n', at) + 1) {
-    rows += r.out[at] != '#' ? 1 : 0;
-    if (r.out.find('\n', at) == std::string::npos) break;
+// "-", /dev/stdout and /proc/self/fd/1 are this process's standard output
+// (here a file the test opened): written through the descriptor, not
+// renamed over what its link points to. /dev/stdout is the test's own link
+// of the same kind (-> /proc/self/fd/1), so that a regression cannot
+// replace the machine's.
+TEST_F(CliOutputsTest, DashAndDevStdoutAreStandardOutput) {
+  fs::create_symlink("/proc/self/fd/1", dir_ / "stdout");
+  for (const std::string& out :
+       {std::string("-"), P("stdout"), std::string("/proc/self/fd/1")}) {
+    SCOPED_TRACE(out);
+    const RunResult r = Synth(out, "5");
+    ASSERT_EQ(r.status, 0) << Describe(r);
+    EXPECT_EQ(r.out.rfind("# clothfit-table 1\n", 0), 0u) << r.out;
+    // The table: its '#' lines, the header and 5 rows.
+    size_t rows = 0;
+    for (size_t at = 0; at < r.out.size(); at = r.out.find('\n', at) + 1) {
+      rows += r.out[at] != '#' ? 1 : 0;
+      if (r.out.find('\n', at) == std::string::npos) break;
+    }
+    EXPECT_EQ(rows, 6u) << r.out;
   }
-  EXPECT_EQ(rows, 6u) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "-"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "stdout"));
 }
 
 TEST_F(CliOutputsTest, SymbolicLinksAreFollowedNotReplaced) {
@@ -140,6 +152,12 @@ TEST_F(CliOutputsTest, AnOutputThatNamesAnInputIsRefused) {
                  {"render", "--preset", "linen_plain", "--out", P("r.exr"),
                   "--png", P("r.exr")},
                  {"--png names the same file as --out"});
+  // An output a command derives: render's PNG beside --out.
+  WriteText(dir_ / "r.png", "a mask");
+  ExpectBadInput(dir_,
+                 {"render", "--preset", "linen_plain", "--mask", P("r.png"),
+                  "--out", P("r.exr")},
+                 {"the PNG beside --out names the same file as --mask"});
   // --out and --stack were both accepted and --out ignored.
   ExpectBadInput(dir_,
                  {"synth", "--gonio", "plain", "--texels", "2", "--directions",
@@ -180,6 +198,36 @@ TEST_F(CliOutputsTest, SignalsLeaveTheEarlierFileAndNoTemporary) {
     EXPECT_EQ(ReadText(dir_ / "big.csv"), "earlier result\n");
     EXPECT_EQ(testing_util::FilesIn(dir_), std::set<std::string>({"big.csv"}));
   }
+}
+
+// A full disk (a 256 KiB tmpfs, where this user may mount one): exit 2
+// naming the output, and nothing left: no partial table, and no images of
+// an image stack whose later images or manifest did not fit (synth --stack
+// left m_normal.exr).
+TEST_F(CliOutputsTest, AFullDiskLeavesNothingBehind) {
+  const fs::path tiny = dir_ / "tiny";
+  fs::create_directory(tiny);
+  if (std::system(("mount -t tmpfs -o size=256k tmpfs " +
+                   testing_util::Quote(tiny.string()) + " 2>/dev/null")
+                      .c_str()) != 0) {
+    GTEST_SKIP() << "cannot mount a tmpfs here";
+  }
+  struct Unmount {
+    std::string path;
+    ~Unmount() { std::system(("umount " + testing_util::Quote(path)).c_str()); }
+  } unmount{tiny.string()};
+  RunResult r = RunClothfit(
+      dir_, {"synth", "--gonio", "plain", "--texels", "16", "--directions", "4",
+             "--stack", (tiny / "m.csv").string()});
+  EXPECT_EQ(r.status, 2) << Describe(r);
+  EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::is_empty(tiny));
+  r = Synth((tiny / "big.csv").string(), "20000");
+  EXPECT_EQ(r.status, 2) << Describe(r);
+  EXPECT_NE(r.err.find("big.csv: cannot write: No space left on device"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::is_empty(tiny));
 }
 
 TEST_F(CliOutputsTest, MessagesNameTheProblem) {
