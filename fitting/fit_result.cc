@@ -188,12 +188,17 @@ std::string FitReportText(const FitReport& r,
     out << line;
   }
   if (!r.search.empty()) out << "starts: " << r.search << "\n";
-  if (r.alternations > 0) {
+  if (r.alternations > 1 && r.lut_views > 0) {
     std::snprintf(line, sizeof(line),
                   "%d alternation(s); last mean relative change of the lookup "
                   "table %.3g\n",
                   r.alternations, r.lut_change);
     out << line;
+  } else if (r.alternations == 1 && r.lut_views_fitted > 0) {
+    out << "1 alternation (the lookup table's change is measured from the "
+           "second on)\n";
+  }
+  if (r.alternations > 0) {
     if (r.lut_views_fitted < r.lut_views) {
       std::snprintf(line, sizeof(line),
                     "lookup table: %d of %d views have enough samples for an "

@@ -349,7 +349,9 @@ LafortuneFitResult FitLafortuneOnce(const TexelSamples& samples,
   // Alternation: T in closed form per view and channel (eq. 4), then the
   // lobes again, until the mean relative change of T is small.
   bool lut_converged = false;
-  out.report.lut_views = static_cast<int>(n_views);
+  // With the table off there are no views to speak of (the summary then
+  // says nothing of a table).
+  out.report.lut_views = options.lookup_table ? static_cast<int>(n_views) : 0;
   out.report.lut_views_fitted = lut ? owned : 0;
   if (joint) {
     // From the first pass's solution on all samples (a few iterations).

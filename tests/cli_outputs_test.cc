@@ -245,6 +245,32 @@ TEST_F(CliOutputsTest, MessagesNameTheProblem) {
                   "--incidence-deg", many, "--out", P("p.png")},
                  {"at most 16 angles", "got 3000"});
   ExpectBadInput(dir_, {}, {"no command given", "clothfit --help"});
+  // One alternation cannot measure the lookup table's change: it said the
+  // table "still changed by 0 (threshold 0.1)".
+  ASSERT_EQ(RunClothfit(dir_, {"synth", "--gonio", "plain", "--texels", "1",
+                               "--directions", "8", "--out", P("g.csv")})
+                .status,
+            0);
+  std::string table;
+  for (std::string text = ReadText(dir_ / "g.csv"); !text.empty();) {
+    std::string line = text.substr(0, text.find('\n'));
+    text.erase(0, line.size() + 1);
+    if (line[0] != '#') line.erase(line.rfind(',', line.rfind(',') - 1));
+    table += line + "\n";  // without its s,t columns
+  }
+  WriteText(dir_ / "g.csv", table);
+  const RunResult one =
+      RunClothfit(dir_, {"fit", "--model", "lafortune", "--data", P("g.csv"),
+                         "--alternations", "1", "--solve", "alternate", "--out",
+                         P("g.json")});
+  EXPECT_NE(one.out.find("1 alternation (the lookup table's change is "
+                         "measured from the second on)"),
+            std::string::npos)
+      << Describe(one);
+  EXPECT_NE(one.err.find("before the lookup table's change could be measured"),
+            std::string::npos)
+      << Describe(one);
+  EXPECT_EQ(one.err.find("still changed by 0"), std::string::npos) << one.err;
   // A newline in a file name stays inside the one line.
   ExpectBadInput(dir_,
                  {"fit", "--model", "thread", "--data", P("a\nb.csv"), "--out",
