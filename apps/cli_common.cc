@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "holes/hole_texture.h"
 #include "models/presets.h"
 
@@ -43,7 +44,11 @@ ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
   ParamFile file = LoadModelOption(args);
   if (std::holds_alternative<HolesModel>(file.params)) {
     // Its mask, as the file names it (relative to the file's folder).
+#ifdef CLOTHFIT_LIGHT
+    RunInFullBinary();  // the mask is an image
+#else
     file.params = LoadHolesModel(file, args.Get("params"));
+#endif
   }
   if (!ModelPredicts(file.params, quantity)) {
     args.Fail(source + ": a " + ModelName(file.params) + " model predicts " +

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "fitting/cloth_fit.h"
 #include "fitting/energy.h"
 #include "fitting/model_selection.h"
@@ -233,7 +234,11 @@ int RunFit(int argc, char** argv) {
   // apps/cmd_holes.cc).
   const std::string model_argument = ModelArgument(argc, argv);
   if (model_argument == "lafortune") return RunFitLafortune(argc, argv);
+#ifdef CLOTHFIT_LIGHT
+  if (model_argument == "holes") RunInFullBinary();  // a mask
+#else
   if (model_argument == "holes") return RunFitHoles(argc, argv);
+#endif
   CommandArgs args(
       "fit",
       "clothfit fit --model thread|cloth --data T.csv [--init P.json | "

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_level_select.h"
 #include "fitting/lafortune_mip.h"
@@ -179,7 +180,11 @@ int RunFitLafortune(int argc, char** argv) {
   MeasurementTable table;
   const std::string source = args.Get(args.Has("stack") ? "stack" : "data");
   if (args.Has("stack")) {
+#ifdef CLOTHFIT_LIGHT
+    RunInFullBinary();
+#else
     table = ReadImageStack(source);
+#endif
   } else {
     table = ReadTableOption(args, source);
   }

@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "io/image_stack.h"
@@ -40,13 +41,18 @@ int RunGonio(const CommandArgs& args) {
   if (args.Has("stack") == args.Has("out")) {
     args.Fail("--gonio writes one table: give --out T.csv or --stack M.csv");
   }
+#ifdef CLOTHFIT_LIGHT
+  if (args.Has("stack")) RunInFullBinary();  // images
+#endif
   const MeasurementTable table = MeasureVirtualGonio(options);
   if (args.Has("stack")) {
     const std::string ext = args.Get("image-ext");
     if (ext != ".exr" && ext != ".png" && ext != ".tif" && ext != ".tiff") {
       args.Fail("option '--image-ext': expected .exr, .png or .tif");
     }
+#ifndef CLOTHFIT_LIGHT
     WriteImageStack(table, args.Get("stack"), ext, true);
+#endif
   } else {
     WriteTable(table, args.Required("out"));
   }

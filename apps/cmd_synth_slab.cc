@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "bench/slab_error_chart.h"
 #include "data_synthetic/slab_monte_carlo.h"
 #include "data_synthetic/synthetic_table.h"
@@ -97,11 +98,15 @@ int RunErrorMap(const CommandArgs& args) {
                         ? png.substr(0, png.size() - 4) + ".csv"
                         : png + ".csv";
   if (args.Has("csv")) csv = args.Get("csv");
+#ifdef CLOTHFIT_LIGHT
+  RunInFullBinary();  // a chart: OpenCV
+#else
   const SlabErrorMap map = ComputeSlabErrorMap(options);
   WriteSlabErrorMap(map, png, csv);
   std::cout << "wrote " << png << " and " << csv << " (" << map.cells.size()
             << " cells, " << map.seconds << " s)\n";
   return 0;
+#endif
 }
 
 }  // namespace

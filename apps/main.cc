@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/full_binary.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 
@@ -35,16 +36,28 @@ struct Command {
   const char* summary;
 };
 
+#ifdef CLOTHFIT_LIGHT
+// The commands that read or write images run in clothfit-full
+// (apps/full_binary.h).
+int RunFull(int, char**) { clothfit::RunInFullBinary(); }
+#define CLOTHFIT_IMAGES(run) RunFull
+#else
+#define CLOTHFIT_IMAGES(run) run
+#endif
+
 const Command kCommands[] = {
-    {"bench", clothfit::RunBench, "speed against accuracy of every fitter"},
+    {"bench", CLOTHFIT_IMAGES(clothfit::RunBench),
+     "speed against accuracy of every fitter"},
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
-    {"holes", clothfit::RunHoles,
+    {"holes", CLOTHFIT_IMAGES(clothfit::RunHoles),
      "semi-transparent textures with thickness (analyze|eval|truth)"},
-    {"plot", clothfit::RunPlot, "polar plots: measured values against a model"},
+    {"plot", CLOTHFIT_IMAGES(clothfit::RunPlot),
+     "polar plots: measured values against a model"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
     {"presets", clothfit::RunPresets, "list the preset fabrics"},
-    {"render", clothfit::RunRender, "preview renders of parameter files"},
+    {"render", CLOTHFIT_IMAGES(clothfit::RunRender),
+     "preview renders of parameter files"},
     {"synth", clothfit::RunSynth, "write a synthetic measurement table"},
     {"version", RunVersion, "print the version (also --version)"},
 };
@@ -132,6 +145,7 @@ int main(int argc, char** argv) {
   }
   const Command* c = FindCommand(name);
   if (c == nullptr) return UnknownCommand("", name);
+  clothfit::SetProgramArguments(argc, argv);
   try {
     return Finish(c->run(argc, argv));
   } catch (const clothfit::InputError& e) {

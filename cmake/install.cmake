@@ -54,7 +54,7 @@ install(TARGETS clothfit_images clothfit_synthetic clothfit_holes
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(EXPORT clothfit_targets NAMESPACE clothfit::
         FILE clothfit-targets.cmake DESTINATION ${CLOTHFIT_CMAKE_DIR})
-install(TARGETS clothfit RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS clothfit clothfit-full RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${CMAKE_SOURCE_DIR}/CHANGELOG.md ${CMAKE_SOURCE_DIR}/README.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
 
