@@ -8,6 +8,7 @@
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 
@@ -98,7 +99,21 @@ void CommandArgs::CheckFiles(const NamedFile* derived) const {
     if (Has(name)) outputs.push_back({"--" + name, values_.at(name)});
   }
   if (derived != nullptr) outputs.push_back(*derived);
+  // A parameter mip map's index copy is written (and may be read) beside it.
+  for (std::vector<NamedFile>* files : {&inputs, &outputs}) {
+    for (size_t i = 0, n = files->size(); i < n; ++i) {
+      const NamedFile f = (*files)[i];
+      // (A device gets the EXR alone.)
+      if (text_util::EndsWith(text_util::Lower(f.path), ".exr") &&
+          (files == &inputs || !ResolveOutput(f.path).direct())) {
+        files->push_back({"the index copy of " + f.option, f.path + ".json"});
+      }
+    }
+  }
   CheckOutputsDistinct(outputs, inputs);
+  // Every output can be written, before anything runs: a failure after the
+  // first of several outputs would leave a partial result.
+  for (const NamedFile& out : outputs) CheckWritable(out.path);
 }
 
 void CommandArgs::CheckDerivedOutput(const std::string& what,

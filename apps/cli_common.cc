@@ -61,12 +61,25 @@ ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
   return file;
 }
 
-std::vector<std::string> SplitList(const std::string& text) {
+std::vector<std::string> ListOption(const CommandArgs& args,
+                                    const std::string& name) {
+  std::string text;
+  try {
+    text = args.Get(name);
+  } catch (const InputError&) {
+    return {};  // absent, no default
+  }
   std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (!item.empty()) out.push_back(item);
+  size_t start = 0;
+  while (true) {
+    const size_t comma = text.find(',', start);
+    out.push_back(text.substr(start, comma - start));
+    if (out.back().empty()) {
+      args.Fail("option '--" + name + "': empty item in '" + text +
+                "' (items are separated by single commas)");
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
   return out;
 }
@@ -74,7 +87,7 @@ std::vector<std::string> SplitList(const std::string& text) {
 std::vector<double> NumberListOption(const CommandArgs& args,
                                      const std::string& name) {
   std::vector<double> out;
-  for (const std::string& item : SplitList(args.Get(name))) {
+  for (const std::string& item : ListOption(args, name)) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (*end != '\0' || !std::isfinite(x)) {

@@ -55,9 +55,7 @@ int RunBench(int argc, char** argv) {
   options.repeats = static_cast<int>(repeats);
   options.seed = static_cast<uint64_t>(args.GetInt("seed"));
   if (args.Has("models")) {
-    std::stringstream list(args.Get("models"));
-    std::string name;
-    while (std::getline(list, name, ',')) {
+    for (const std::string& name : ListOption(args, "models")) {
       if (name != "thread" && name != "cloth" && name != "lafortune" &&
           name != "slab" && name != "holes") {
         args.Fail("option '--models': unknown model '" + name +

@@ -183,7 +183,17 @@ int RunFitLafortune(int argc, char** argv) {
 #ifdef CLOTHFIT_LIGHT
     RunInFullBinary();
 #else
-    table = ReadImageStack(source);
+    ReadStackOptions stack;
+    std::vector<std::string> images;
+    stack.images = &images;
+    table = ReadImageStack(source, stack);
+    std::vector<NamedFile> inputs;
+    for (const std::string& image : images) {
+      inputs.push_back({"an image of --stack", image});
+    }
+    CheckOutputsDistinct(
+        {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
+        inputs);
 #endif
   } else {
     table = ReadTableOption(args, source);

@@ -4,6 +4,7 @@
 
 #include "apps/commands.h"
 #include "fitting/slab_fit.h"
+#include "io/atomic_file.h"
 #include "io/input_error.h"
 
 namespace clothfit {
@@ -15,7 +16,12 @@ int RunFitSlab(const CommandArgs& args, const SolverOptions& solver) {
       args.Fail(std::string("--") + option + " is not available for slab fits");
     }
   }
-  const std::vector<std::string> paths = SplitList(args.Required("data"));
+  args.Required("data");
+  const std::vector<std::string> paths = ListOption(args, "data");
+  // Each table of the list is an input (Files checks --data as one name).
+  for (const std::string& path : paths) {
+    CheckOutputsDistinct({{"--out", args.Get("out")}}, {{"--data", path}});
+  }
   if (paths.empty()) args.Fail("option '--data': needs a table");
   std::vector<MeasurementTable> tables;
   for (const std::string& path : paths) {
@@ -25,8 +31,8 @@ int RunFitSlab(const CommandArgs& args, const SolverOptions& solver) {
   SlabFitOptions options;
   options.solver = solver;
   options.per_channel_tau = args.Has("per-channel-tau");
-  options.fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
-  options.free_only = SplitList(args.Has("free") ? args.Get("free") : "");
+  options.fix = ListOption(args, "fix");
+  options.free_only = ListOption(args, "free");
   if (args.Has("starts")) {
     const long n = args.GetInt("starts");
     if (n < 1 || n > 100) args.Fail("option '--starts': must be in [1, 100]");

@@ -103,7 +103,7 @@ int LevelOption(const CommandArgs& args, const HoleTexture& texture) {
 }
 
 glm::dvec3 WallColorOption(const CommandArgs& args) {
-  const std::vector<std::string> parts = SplitList(args.Get("wall-color"));
+  const std::vector<std::string> parts = ListOption(args, "wall-color");
   std::vector<double> values;
   for (const std::string& part : parts) {
     char* end = nullptr;
@@ -178,7 +178,7 @@ std::string CsvBeside(const CommandArgs& args, const std::string& option) {
 std::vector<double> NumberList(const CommandArgs& args,
                                const std::string& option) {
   std::vector<double> out;
-  for (const std::string& part : SplitList(args.Get(option))) {
+  for (const std::string& part : ListOption(args, option)) {
     char* end = nullptr;
     out.push_back(std::strtod(part.c_str(), &end));
     if (*end != '\0' || !(out.back() > 0.0) || out.back() > 1e4) {
@@ -321,8 +321,9 @@ int RunHolesEval(int argc, char** argv) {
   if (args.Has("chart")) {
     const std::string csv = CsvBeside(args, "chart");
     const long rays = args.GetInt("rays");
-    if (rays < 1 || rays > 1000000000) {
-      args.Fail("option '--rays': must be in [1, 1e9]");
+    // 1e7 rays a view take ~3.6 s for the chart: 1e8 is minutes.
+    if (rays < 1 || rays > 100000000) {
+      args.Fail("option '--rays': must be in [1, 1e8]");
     }
     std::vector<double> thetas;
     for (double t = 0.0; t <= 85.0; t += 2.5) thetas.push_back(t);
@@ -373,12 +374,18 @@ int RunTruth(int argc, char** argv) {
   const std::string out = args.Required("out");
   const long rays = args.GetInt("rays");
   const double noise = args.GetDouble("noise");
-  if (rays < 1 || rays > 1000000000) {
-    args.Fail("option '--rays': must be in [1, 1e9]");
+  if (rays < 1 || rays > 100000000) {
+    args.Fail("option '--rays': must be in [1, 1e8]");
   }
   if (!(noise >= 0.0)) args.Fail("option '--noise': must be >= 0");
   const Mask mask = LoadMask(args);
   MeasurementTable table = DirectionsTable(args);
+  // Rays of all views together: 1e9 is some minutes on this machine.
+  if (static_cast<double>(rays) * table.rows.size() > 1e9) {
+    args.Fail("option '--rays': " + std::to_string(rays) +
+              " rays for each of " + std::to_string(table.rows.size()) +
+              " views is more than 1e9 in all");
+  }
   const Footprint tile = TileFootprint(mask, rays);
   FillTable(
       args, params,
@@ -452,8 +459,8 @@ int RunFitHoles(int argc, char** argv) {
   options.solver = ReadSolverOptions(args, true);
   const HoleMethod method = MethodOption(args);
   options.fit_wall_color = args.Has("fit-wall-color");
-  options.fix = SplitList(args.Has("fix") ? args.Get("fix") : "");
-  options.free_only = SplitList(args.Has("free") ? args.Get("free") : "");
+  options.fix = ListOption(args, "fix");
+  options.free_only = ListOption(args, "free");
   if (args.Has("init") && args.Has("thickness")) {
     args.Fail("give at most one of --init and --thickness");
   }

@@ -8,6 +8,7 @@
 #include "apps/commands.h"
 #include "charts/chart.h"
 #include "io/atomic_file.h"
+#include "io/text_util.h"
 
 namespace clothfit {
 namespace {
@@ -50,17 +51,13 @@ int RunPlot(int argc, char** argv) {
   if (!(window > 0.0 && window < kPi / 2)) {
     args.Fail("option '--window-deg': must be in (0, 90)");
   }
-  std::vector<double> incidences;
-  std::stringstream list(args.Get("incidence-deg"));
-  std::string item;
-  while (std::getline(list, item, ',')) {
-    char* end = nullptr;
-    const double deg = std::strtod(item.c_str(), &end);
-    if (end == item.c_str() || *end != '\0' || !(deg >= 0.0 && deg < 90.0)) {
-      args.Fail("option '--incidence-deg': '" + item +
-                "' is not an angle in [0, 90)");
+  const std::vector<double> incidences =
+      NumberListOption(args, "incidence-deg");
+  for (const double deg : incidences) {
+    if (!(deg >= 0.0 && deg < 90.0)) {
+      args.Fail("option '--incidence-deg': " + text_util::FormatNumber(deg) +
+                " is not an angle in [0, 90)");
     }
-    incidences.push_back(deg);
   }
   // A panel each, side by side: more would not be readable, and ~3000 made
   // an image too wide for the PNG encoder.

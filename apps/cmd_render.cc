@@ -106,6 +106,9 @@ int RunRender(int argc, char** argv) {
                               ? args.Get("png")
                               : out.substr(0, out.size() - 4) + ".png";
   if (!args.Has("png")) args.CheckDerivedOutput("the PNG beside --out", png);
+  if (!text_util::EndsWith(text_util::Lower(png), ".png")) {
+    args.Fail("option '--png': must name a .png file, got '" + png + "'");
+  }
   PreviewOptions options;
   const long size = args.GetInt("size");
   if (size < 8 || size > 1024)

@@ -68,8 +68,9 @@ SlabParams ParamsOption(const CommandArgs& args) {
 int64_t PhotonsOption(const CommandArgs& args, int64_t fallback) {
   if (!args.Has("photons")) return fallback;
   const long n = args.GetInt("photons");
-  if (n < 1 || n > 10000000000L) {
-    args.Fail("option '--photons': must be in [1, 1e10]");
+  // 3e8 photons take ~60 s here: 1e9 is some minutes.
+  if (n < 1 || n > 1000000000L) {
+    args.Fail("option '--photons': must be in [1, 1e9]");
   }
   return n;
 }

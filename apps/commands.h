@@ -44,8 +44,11 @@ ParamFile LoadModelOption(const CommandArgs& args,
 ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
                              const std::string& source);
 
-// "a,b,,c" -> {"a", "b", "c"} (--fix, --free, lists of files).
-std::vector<std::string> SplitList(const std::string& text);
+// The value of option `name` split at commas (--fix, --free, lists of
+// files and numbers): {} when the option is absent and has no default; an
+// empty item ("a,,b", "a,", ",a") fails with the option's name.
+std::vector<std::string> ListOption(const CommandArgs& args,
+                                    const std::string& name);
 // The value of option `name` as comma-separated finite numbers (at least
 // one); a bad item fails with the option's name.
 std::vector<double> NumberListOption(const CommandArgs& args,

@@ -21,13 +21,15 @@ bool Wanted(const BenchOptions& o, const std::string& model) {
          std::find(o.models.begin(), o.models.end(), model) != o.models.end();
 }
 
+// A CSV field: empty where the figure does not apply (a model without a
+// size), never "nan".
 std::string Number(double v) {
-  return std::isfinite(v) ? text_util::FormatNumber(v) : "nan";
+  return std::isfinite(v) ? text_util::FormatNumber(v) : "";
 }
 
 // Four significant digits, for the summary's tables.
 std::string Short(double v) {
-  return std::isfinite(v) ? text_util::FormatNumber(v, 4) : "nan";
+  return std::isfinite(v) ? text_util::FormatNumber(v, 4) : "n/a";
 }
 
 }  // namespace

@@ -81,7 +81,7 @@ void Validate(const VirtualGonioOptions& o) {
     char what[200];
     std::snprintf(what, sizeof(what),
                   "texels %d and directions %d make %.0f rows (texels^2 x "
-                  "directions^4), more than %.0f (about 6 GB in memory)",
+                  "directions^4), more than %.0f (about 6.4 GB in memory)",
                   o.texels, o.directions, rows, kMaxVirtualGonioRows);
     fail(what);
   }

@@ -93,7 +93,9 @@ struct VirtualGonioOptions {
 // [0, 0.5); glossy < 0; more than kMaxVirtualGonioRows rows. Memory: the
 // rows dominate (s^2 n^4 TableRows; the paper's 32 x 32 texels, n = 8
 // make 4.2 M rows, about 0.75 GB).
-inline constexpr double kMaxVirtualGonioRows = 33554432.0;  // 2^25
+// 12 M rows hold scripts/scale.sh's 50 x 50 texels x 64 x 64 directions
+// (10.24 M); a row costs ~530 bytes while the table is made and written.
+inline constexpr double kMaxVirtualGonioRows = 12e6;
 MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options);
 
 // "plain" | "satin" | "knit"; false for an unknown name.

@@ -292,12 +292,22 @@ SlabValidity Validate(const std::vector<Sample>& samples, int channels,
   // Normalised residuals (by sigma and weight), so that tables in other
   // units (f and D) count by their precision.
   v.improvement = cost > 0.0 ? std::sqrt(b.cost / cost) : HUGE_VAL;
-  v.notes.push_back(
-      "Constant-alpha baseline (" + b.variant +
-      Format("): rms error %.4g against %.4g for the slab model; ",
-             v.baseline_rms, v.slab_rms) +
-      Format("the slab model's weighted rms error is %.3gx lower.",
-             v.improvement));
+  // In words that hold whichever is better (a ratio below 1 is "higher").
+  const std::string comparison =
+      cost > 0.0 && b.cost > 0.0
+          ? (v.improvement >= 1.0
+                 ? Format("the slab model's weighted rms error is %.3gx lower.",
+                          v.improvement)
+                 : Format("the slab model's weighted rms error is %.3gx "
+                          "higher.",
+                          1.0 / v.improvement))
+          : (cost > 0.0 ? std::string("the baseline fits exactly.")
+                        : std::string("the slab model fits exactly."));
+  v.notes.push_back("Constant-alpha baseline (" + b.variant +
+                    Format("): rms error %.4g against %.4g for the slab "
+                           "model; ",
+                           v.baseline_rms, v.slab_rms) +
+                    comparison);
   v.within_regime = !v.multiple_scattering && !v.error_exceeds_noise;
   return v;
 }

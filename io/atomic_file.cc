@@ -134,9 +134,11 @@ bool SameFile(const std::string& a, const std::string& b) {
 // The absolute path `path` names, its existing part with links resolved.
 std::string Canonical(const std::string& path) {
   std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, error);
+  if (error) return path;
   const std::filesystem::path p =
-      std::filesystem::weakly_canonical(path, error);
-  return error ? path : p.string();
+      std::filesystem::weakly_canonical(absolute, error);
+  return error ? absolute.string() : p.string();
 }
 
 // N when `path` is this process's /proc/self/fd/N (or /proc/PID/fd/N,

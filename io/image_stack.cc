@@ -371,6 +371,7 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
   std::vector<glm::dvec3> normals;  // per pixel, from the normal map
   if (!manifest.normal_map.empty()) {
     first_image = resolve(manifest.normal_map);
+    if (options.images != nullptr) options.images->push_back(first_image);
     const Image image =
         ReadListedImage(first_image, manifest_path, manifest.normal_map_line);
     width = image.width;
@@ -381,6 +382,7 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
   }
   for (const StackEntry& entry : manifest.entries) {
     const std::string path = resolve(entry.file);
+    if (options.images != nullptr) options.images->push_back(path);
     const Image image = ReadListedImage(path, manifest_path, entry.line);
     if (first_image.empty()) {
       width = image.width;

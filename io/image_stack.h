@@ -24,6 +24,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/table.h"
 
@@ -32,6 +33,9 @@ namespace clothfit {
 struct ReadStackOptions {
   // Keep only every `stride`-th pixel in x and y (1 = all).
   int stride = 1;
+  // If set: receives the path of every image read (the normal map too), so
+  // that a caller can refuse an output that would replace one.
+  std::vector<std::string>* images = nullptr;
 };
 
 // Throws InputError naming the manifest (line, column) or the image file

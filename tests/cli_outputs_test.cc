@@ -152,6 +152,39 @@ TEST_F(CliOutputsTest, AnOutputThatNamesAnInputIsRefused) {
                  {"render", "--preset", "linen_plain", "--out", P("r.exr"),
                   "--png", P("r.exr")},
                  {"--png names the same file as --out"});
+  // The same file by another name: compared as absolute paths.
+  ExpectBadInput(
+      dir_,
+      {"synth", "--model", "slab", "--tau", "1", "--albedo", "0.5", "--out",
+       P("y.csv"), "--transmittance", (dir_ / "." / "y.csv").string()},
+      {"--transmittance names the same file as --out"});
+  // Every table of a slab fit's list, every image of a stack.
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "slab", "--data",
+                  P("alias.csv") + "," + P("a.csv"), "--out", P("a.csv")},
+                 {"--out names the same file as --data"});
+  ASSERT_EQ(RunClothfit(dir_, {"synth", "--gonio", "plain", "--texels", "2",
+                               "--directions", "2", "--stack", P("m.csv")})
+                .status,
+            0);
+  ExpectBadInput(dir_,
+                 {"fit", "--model", "lafortune", "--stack", P("m.csv"), "--out",
+                  P("m_0000.exr")},
+                 {"--out names the same file as an image of --stack"});
+  // A mip map's index copy is an output too.
+  WriteText(dir_ / "mask.pgm", "P2\n2 2\n255\n0 255\n255 0\n");
+  ExpectBadInput(dir_,
+                 {"holes", "analyze", "--mask", P("mask.pgm"), "--out",
+                  P("c.exr"), "--distances", P("c.exr.json")},
+                 {"the index copy of --out names the same file as "
+                  "--distances"});
+  // Every output is checked before the run: the first was written, then
+  // the second failed.
+  ExpectBadInput(
+      dir_,
+      {"synth", "--model", "slab", "--tau", "1", "--albedo", "0.5", "--out",
+       P("first.csv"), "--transmittance", P("nodir/second.csv")},
+      {"nodir/second.csv: cannot write"});
   // An output a command derives: render's PNG beside --out.
   WriteText(dir_ / "r.png", "a mask");
   ExpectBadInput(dir_,

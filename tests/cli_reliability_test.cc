@@ -232,6 +232,22 @@ TEST_F(CliReliabilityTest, ContradictoryFitRequestsAreRefused) {
                  {"fit", "--model", "thread", "--data", P("t.csv"), "--free",
                   "eta", "--fix", "eta,kd", "--out", P("o.json")},
                  {"--fix and --free both name 'eta'"});
+  // A list with an empty item was read without it.
+  for (const char* list : {"eta,,kd", "eta,", ",eta"}) {
+    ExpectBadInput(dir_,
+                   {"fit", "--model", "thread", "--data", P("t.csv"), "--fix",
+                    list, "--out", P("o.json")},
+                   {"option '--fix': empty item in '" + std::string(list)});
+  }
+  ExpectBadInput(dir_,
+                 {"plot", "--preset", "linen_plain", "--data", P("t.csv"),
+                  "--incidence-deg", "1,", "--out", P("p.png")},
+                 {"option '--incidence-deg': empty item"});
+  // Work beyond what the machine can do in minutes.
+  ExpectBadInput(dir_,
+                 {"synth", "--preset", "linen_plain", "--rows", "100000000",
+                  "--out", P("s.csv")},
+                 {"option '--rows': must be in [1, 1e7]"});
 
   std::string same = "theta_i,phi_i,theta_o,phi_o,value\n";
   for (int i = 0; i < 100000; ++i) same += "30,0,30,180,0.1\n";

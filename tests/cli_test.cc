@@ -829,7 +829,10 @@ TEST(CliTest, BenchQuickWritesCsvChartsAndSummary) {
     std::stringstream rest(line.substr(q2 + 2));
     std::vector<double> v;
     std::string field;
-    while (std::getline(rest, field, ',')) v.push_back(std::stod(field));
+    while (std::getline(rest, field, ',')) {
+      EXPECT_EQ(field.find("nan"), std::string::npos) << line;
+      v.push_back(field.empty() ? std::nan("") : std::stod(field));  // n/a
+    }
     ASSERT_EQ(v.size(), 11u) << line;
     ++rows[model];
     defaults[model] += v[0] == 1.0;

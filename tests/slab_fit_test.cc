@@ -194,6 +194,14 @@ TEST(SlabFit, BaselineWinsOnItsOwnData) {
   EXPECT_LT(r.validity.baseline_rms, 1e-12);
   EXPECT_LT(r.validity.improvement, 1.0);
   EXPECT_NE(r.validity.baseline.find("front-lit"), std::string::npos);
+  // The note says which is better, in finite words (it said "0.795x lower"
+  // for a worse slab, and "infx lower" when the slab fitted exactly).
+  std::string notes;
+  for (const std::string& note : r.validity.notes) notes += note + "\n";
+  EXPECT_EQ(notes.find("x lower"), std::string::npos) << notes;
+  EXPECT_TRUE(notes.find("the baseline fits exactly") != std::string::npos ||
+              notes.find("x higher") != std::string::npos)
+      << notes;
 }
 
 TEST(SlabFit, FixedParametersKeepTheirValue) {
