@@ -34,6 +34,9 @@ namespace {
 
 using image_stack_internal::Fail;
 using image_stack_internal::kMaxPixels;
+
+// Most rows a stack may make (a row is sizeof(TableRow), ~150 bytes).
+constexpr int64_t kMaxStackRows = int64_t{1} << 25;
 using image_stack_internal::kNormalMapKey;
 namespace fs = std::filesystem;
 
@@ -398,6 +401,24 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
     }
     if (image.colour.size() == 3) table.channels = 3;
     if (image.alpha >= 0) table.has_alpha = true;
+    if (table.rows.empty()) {
+      // The rows the whole stack makes, before they are made: images of
+      // a size one may read can still add up to more than the memory.
+      const int64_t per_image = ((int64_t{width} + stride - 1) / stride) *
+                                ((int64_t{height} + stride - 1) / stride);
+      const int64_t rows =
+          per_image * static_cast<int64_t>(manifest.entries.size());
+      if (rows > kMaxStackRows) {
+        Fail(manifest_path, 0, 0,
+             std::to_string(manifest.entries.size()) + " images of " +
+                 std::to_string(width) + " x " + std::to_string(height) +
+                 " texels make " + std::to_string(rows) + " rows, more than " +
+                 std::to_string(kMaxStackRows) + " (about " +
+                 std::to_string(kMaxStackRows * sizeof(TableRow) >> 30) +
+                 " GB); fit smaller images or fewer directions");
+      }
+      table.rows.reserve(static_cast<size_t>(rows));
+    }
 
     for (int y = 0; y < height; y += stride) {
       for (int x = 0; x < width; x += stride) {

@@ -206,6 +206,24 @@ TEST_F(CliReliabilityTest, EndlessInputsAreBoundedBadInput) {
                  {"eval", "--preset", "linen_plain", "--dirs", "/dev/zero",
                   "--out", P("o.csv")},
                  {"/dev/zero:1: line longer than 1 MiB"});
+  // Images each of a readable size that add up to more rows than memory:
+  // one 1024 x 1024 image listed 40 times (42 M rows, ~6 GB) is refused
+  // before the rows are made.
+  {
+    std::string pfm = "PF\n1024 1024\n-1.0\n";
+    pfm.append(size_t{1024} * 1024 * 3 * sizeof(float), '\0');
+    WriteText(dir_ / "big.pfm", pfm);
+    std::string many = "# clothfit-stack 1\ntheta_i,phi_i,theta_o,phi_o,file\n";
+    for (int i = 0; i < 40; ++i) {
+      many += std::to_string(i) + ",0,30,180,big.pfm\n";
+    }
+    WriteText(dir_ / "many.csv", many);
+    ExpectBadInput(dir_,
+                   {"fit", "--model", "lafortune", "--stack", P("many.csv"),
+                    "--out", P("z.exr")},
+                   {"many.csv: 40 images of 1024 x 1024 texels make 41943040 "
+                    "rows, more than 33554432"});
+  }
   // A long line in a file, after good ones: its line number.
   WriteText(dir_ / "long.csv", "theta_i,phi_i,theta_o,phi_o\n30,0,30,180\n" +
                                    std::string(3 << 20, '1') + "\n");
