@@ -16,6 +16,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -294,7 +295,9 @@ void OutputFile::Commit() {
   if (std::rename(write_path_.c_str(), target_.path.c_str()) != 0) {
     ThrowWriteError(path_, errno);
   }
-  named_ = false;  // it is the target now
+  named_ = false;  // it is the target now: nothing to remove
+  UnregisterTemp(slot_);
+  slot_ = -1;
 }
 
 void OutputFile::CopyToTarget() {
