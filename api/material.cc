@@ -39,7 +39,7 @@ Material Material::FromParams(const ModelParams& params) {
 }
 
 Material Material::Load(const std::string& path) {
-  if (!text_util::EndsWith(path, ".exr")) {
+  if (!text_util::HasExtension(path, ".exr")) {
     const ParamFile file = ReadParamFile(path);
     Material m;
     m.kind_ = ModelName(file.params);

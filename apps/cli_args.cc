@@ -104,7 +104,7 @@ void CommandArgs::CheckFiles(const NamedFile* derived) const {
     for (size_t i = 0, n = files->size(); i < n; ++i) {
       const NamedFile f = (*files)[i];
       // (A device gets the EXR alone.)
-      if (text_util::EndsWith(text_util::Lower(f.path), ".exr") &&
+      if (text_util::HasExtension(f.path, ".exr") &&
           (files == &inputs || !ResolveOutput(f.path).direct())) {
         files->push_back({"the index copy of " + f.option, f.path + ".json"});
       }

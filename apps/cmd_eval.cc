@@ -76,7 +76,7 @@ int RunEval(int argc, char** argv) {
   args.Option("level", "L", "P.exr: the mip level that s,t index", "0");
   if (!args.Parse(argc, argv, 2)) return 0;
   const bool mipmap =
-      args.Has("params") && text_util::EndsWith(args.Get("params"), ".exr");
+      args.Has("params") && text_util::HasExtension(args.Get("params"), ".exr");
   if (mipmap && args.Has("preset")) {
     args.Fail("give exactly one of --params FILE and --preset NAME");
   }

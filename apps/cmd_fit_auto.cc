@@ -14,8 +14,9 @@ namespace {
 
 // P.json -> P.candidates.csv (other names: NAME.candidates.csv).
 std::string CandidatesPath(const std::string& out) {
-  const std::string stem =
-      text_util::EndsWith(out, ".json") ? out.substr(0, out.size() - 5) : out;
+  const std::string stem = text_util::HasExtension(out, ".json")
+                               ? out.substr(0, out.size() - 5)
+                               : out;
   return stem + ".candidates.csv";
 }
 

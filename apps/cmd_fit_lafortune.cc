@@ -200,7 +200,7 @@ int RunFitLafortune(int argc, char** argv) {
   }
 
   if (!table.has_texels) {  // one model for the whole table
-    if (!text_util::EndsWith(out_path, ".json")) {
+    if (!text_util::HasExtension(out_path, ".json")) {
       args.Fail(
           "a table without s,t columns gives one model: --out must be "
           "a .json parameter file");
@@ -248,7 +248,7 @@ int RunFitLafortune(int argc, char** argv) {
         "--select heldout on a table with s,t columns chooses the mip "
         "level: add --mip");
   }
-  if (!text_util::EndsWith(out_path, ".exr")) {
+  if (!text_util::HasExtension(out_path, ".exr")) {
     args.Fail(
         "a table with s,t columns gives a model per texel: --out must "
         "be an .exr file");

@@ -167,7 +167,7 @@ void FillTable(
 
 std::string CsvBeside(const CommandArgs& args, const std::string& option) {
   const std::string png = args.Get(option);
-  if (png.size() < 5 || png.substr(png.size() - 4) != ".png") {
+  if (png.size() < 5 || !text_util::HasExtension(png, ".png")) {
     args.Fail("option '--" + option + "': the chart is a .png file");
   }
   const std::string csv = png.substr(0, png.size() - 4) + ".csv";

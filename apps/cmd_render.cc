@@ -35,7 +35,7 @@ PreviewImage RenderOption(const CommandArgs& args,
     return RenderCylinders(cloth, options);
   }
   const std::string path = args.Get(file_option);
-  if (text_util::EndsWith(path, ".exr")) {
+  if (text_util::HasExtension(path, ".exr")) {
     return RenderCylinders(MipmapRho(Material::Load(path), options.tile),
                            options);
   }
@@ -99,14 +99,14 @@ int RunRender(int argc, char** argv) {
     args.Fail("give at most one of --compare FILE and --compare-preset NAME");
   }
   const std::string out = args.Required("out");
-  if (out.size() < 5 || out.substr(out.size() - 4) != ".exr") {
+  if (out.size() < 5 || !text_util::HasExtension(out, ".exr")) {
     args.Fail("option '--out': must name an .exr file, got '" + out + "'");
   }
   const std::string png = args.Has("png")
                               ? args.Get("png")
                               : out.substr(0, out.size() - 4) + ".png";
   if (!args.Has("png")) args.CheckDerivedOutput("the PNG beside --out", png);
-  if (!text_util::EndsWith(text_util::Lower(png), ".png")) {
+  if (!text_util::HasExtension(png, ".png")) {
     args.Fail("option '--png': must name a .png file, got '" + png + "'");
   }
   PreviewOptions options;

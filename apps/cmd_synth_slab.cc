@@ -95,7 +95,7 @@ int RunErrorMap(const CommandArgs& args) {
   options.seed = static_cast<uint64_t>(args.GetInt("seed"));
   options.threads = ThreadsOption(args);
   const std::string png = args.Get("error-map");
-  std::string csv = png.size() > 4 && png.substr(png.size() - 4) == ".png"
+  std::string csv = png.size() > 4 && text_util::HasExtension(png, ".png")
                         ? png.substr(0, png.size() - 4) + ".csv"
                         : png + ".csv";
   if (args.Has("csv")) csv = args.Get("csv");

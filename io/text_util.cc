@@ -84,6 +84,11 @@ bool EndsWith(std::string_view text, std::string_view suffix) {
          text.substr(text.size() - suffix.size()) == suffix;
 }
 
+bool HasExtension(std::string_view path, std::string_view extension) {
+  return path.size() >= extension.size() &&
+         Lower(path.substr(path.size() - extension.size())) == Lower(extension);
+}
+
 std::vector<std::string_view> SplitFields(std::string_view line) {
   std::vector<std::string_view> fields;
   size_t start = 0;

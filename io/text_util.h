@@ -45,6 +45,10 @@ std::optional<std::string> FormatVersion(std::string_view comment,
 // Whether `text` ends with `suffix`.
 bool EndsWith(std::string_view text, std::string_view suffix);
 
+// Whether `path` ends with the file extension `extension` (".exr"), in any
+// case ("G16.EXR").
+bool HasExtension(std::string_view path, std::string_view extension);
+
 // Splits `line` at every comma (no quoting); always at least one field.
 std::vector<std::string_view> SplitFields(std::string_view line);
 

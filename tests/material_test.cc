@@ -158,6 +158,18 @@ LafortuneMipResult DiffuseMip() {
   return r;
 }
 
+// The EXR alone is a material (its index is in its header), under any
+// case of its extension: "G16.EXR" was read as JSON ("invalid JSON").
+TEST(Material, MipmapLoadsAloneAndWithAnUpperCaseExtension) {
+  const auto dir = FreshTestDir("material_");
+  const std::string path = (dir / "G16.EXR").string();
+  WriteParamMipmap(ToParamMipmap(DiffuseMip()), path);
+  std::filesystem::remove(path + ".json");
+  const Material m = Material::Load(path);
+  EXPECT_EQ(m.Kind(), "lafortune_mipmap");
+  EXPECT_EQ(m.Levels(), 2);
+}
+
 TEST(Material, MipmapPicksTheNearestTexelOfTheLevel) {
   const auto dir = FreshTestDir("material_");
   const std::string path = (dir / "diffuse.exr").string();
