@@ -10,6 +10,7 @@
 #include "fitting/energy.h"
 #include "fitting/least_squares.h"
 #include "fitting/model_residual_internal.h"
+#include "fitting/start_search.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 #include "models/evaluate.h"
@@ -252,8 +253,12 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   // grid and closed form, over a space-filling design of the geometry and
   // eta where those are free; then the solver from the best, until the
   // best cost has been reached `stop_after_hits` times.
+  // The search and the held-geometry solves see the rows the starts are
+  // solved on.
+  MeasurementTable sample_storage;
+  const MeasurementTable& sample = SearchTable(table, &sample_storage);
   ClothStartProblem search;
-  search.table = &table;
+  search.table = &sample;
   search.weighting = &weighting;
   search.weave = weave.get();
   search.specs = &lsq.specs;
@@ -264,8 +269,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
       SearchClothStarts(search, std::max(1, options.solve_starts));
   if (starts.design_points > 1) lsq.stop_after_hits = options.stop_after_hits;
   if (!geometry_fixed) {
-    starts.starts =
-        RefineAtFixedGeometry(table, *weave, lsq.specs, options, starts.starts);
+    starts.starts = RefineAtFixedGeometry(sample, *weave, lsq.specs, options,
+                                          starts.starts);
   }
 
   ClothFitResult result;

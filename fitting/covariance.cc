@@ -7,7 +7,8 @@ namespace clothfit {
 
 ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
                                      const Eigen::VectorXd& r, bool sigma_known,
-                                     double cost, int residuals) {
+                                     double cost, int residuals,
+                                     const RowBlockVisitor& rows) {
   const int n = static_cast<int>(j.cols());
   ColumnCovariance out;
   out.stddev.assign(n, -1.0);
@@ -46,7 +47,7 @@ ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
     return out;
   }
   const int dof = residuals - n;
-  const bool has_r = r.size() == j.rows();
+  const bool has_r = rows != nullptr || r.size() == j.rows();
   const double s2 = sigma_known || dof <= 0 ? 1.0 : 2.0 * cost / dof;
   const Eigen::MatrixXd w = v * sv.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd wd = norms.cwiseInverse().asDiagonal() * w;
@@ -60,16 +61,25 @@ ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
   // pulls the fit toward itself is smaller than its noise, most so where
   // few rows decide a parameter (a narrow lobe's peak), which HC1's
   // uniform n / (n - p) leaves too confident.
+  //   A A^T = D^-1 W (sum_i e_i^2 U_i^T U_i) W^T D^-1, W = V S^-1,
+  // with U's row i = J_i D^-1 W: the sum runs over the rows in blocks.
   if (!sigma_known && dof > 0 && has_r) {
-    const Eigen::MatrixXd& u = svd.matrixU();
-    Eigen::VectorXd e(r.size());
-    for (int i = 0; i < r.size(); ++i) {
-      const double h = std::min(u.row(i).squaredNorm(), 1.0 - 1e-12);
-      e[i] = r[i] / (1.0 - h);
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);
+    const Eigen::MatrixXd dw = norms.cwiseInverse().asDiagonal() * w;
+    auto add = [&](const Eigen::MatrixXd& jb, const Eigen::VectorXd& rb) {
+      Eigen::MatrixXd u = jb * dw;
+      for (int i = 0; i < rb.size(); ++i) {  // rows e_i U_i
+        const double h = std::min(u.row(i).squaredNorm(), 1.0 - 1e-12);
+        u.row(i) *= rb[i] / (1.0 - h);
+      }
+      meat.noalias() += u.transpose() * u;
+    };
+    if (rows) {
+      rows(add);
+    } else {
+      add(j, r);
     }
-    const Eigen::MatrixXd a = norms.cwiseInverse().asDiagonal() * w *
-                              (u.transpose() * e.asDiagonal());
-    out.sandwich_covariance = a * a.transpose();
+    out.sandwich_covariance = dw * meat * dw.transpose();
     for (int c = 0; c < n; ++c) {
       out.sandwich[c] = std::sqrt(out.sandwich_covariance(c, c));
     }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <vector>
 
 namespace clothfit {
@@ -38,9 +39,19 @@ struct ColumnCovariance {
 // sandwich (White's heteroscedasticity-consistent estimate, HC1) is given
 // too: (J^T J)^-1 J^T diag(r^2) J (J^T J)^-1 n / (n - p), valid whatever
 // the noise level and its variation across rows.
+//
+// J may also be any matrix with the rows' J^T J (the triangular factors of
+// chunks of rows, fitting/compressed_rows.cc): the SVD's singular values
+// and V, hence Cov, are the same. The sandwich needs each row's leverage:
+// then `rows` visits the rows' own Jacobian (same columns) and residuals,
+// in blocks, by calling its argument once per block.
 inline constexpr double kMinSingularRatio = 1e-7;
+using RowBlockVisitor =
+    std::function<void(const std::function<void(const Eigen::MatrixXd& j,
+                                                const Eigen::VectorXd& r)>&)>;
 ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
                                      const Eigen::VectorXd& r, bool sigma_known,
-                                     double cost, int residuals);
+                                     double cost, int residuals,
+                                     const RowBlockVisitor& rows = nullptr);
 
 }  // namespace clothfit

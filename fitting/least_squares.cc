@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -22,7 +23,46 @@ struct BuiltProblem {
   std::unique_ptr<ceres::LossFunction> loss;
   std::unique_ptr<ceres::Problem> problem;
   std::vector<double*> blocks;
+  size_t residuals = 0;  // of the rows (LeastSquaresProblem::add_residuals)
 };
+
+// The threads of the residuals' evaluation (0: every core).
+int Threads(const SolverOptions& options) {
+  return options.num_threads > 0
+             ? options.num_threads
+             : std::max(1,
+                        static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// The free blocks of a built problem, for Evaluate.
+std::vector<double*> FreeBlocks(const BuiltProblem& built) {
+  std::vector<double*> free;
+  for (double* block : built.blocks) {
+    if (built.problem->HasParameterBlock(block) &&
+        !built.problem->IsParameterBlockConstant(block)) {
+      free.push_back(block);
+    }
+  }
+  return free;
+}
+
+// The Jacobian (dense) and residuals of `built` over its free blocks.
+void EvaluateDense(BuiltProblem* built, int threads, Eigen::MatrixXd* j,
+                   Eigen::VectorXd* r) {
+  ceres::Problem::EvaluateOptions eval;
+  eval.parameter_blocks = FreeBlocks(*built);
+  eval.num_threads = threads;
+  ceres::CRSMatrix crs;
+  std::vector<double> residuals;
+  built->problem->Evaluate(eval, nullptr, &residuals, nullptr, &crs);
+  *j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) {
+      (*j)(row, crs.cols[k]) = crs.values[k];
+    }
+  }
+  *r = Eigen::Map<const Eigen::VectorXd>(residuals.data(), residuals.size());
+}
 
 std::unique_ptr<ceres::LossFunction> MakeLoss(const SolverOptions& options) {
   switch (options.loss) {
@@ -37,7 +77,8 @@ std::unique_ptr<ceres::LossFunction> MakeLoss(const SolverOptions& options) {
 }
 
 void Build(const LeastSquaresProblem& lsq, const SolverOptions& options,
-           std::vector<double>* x, BuiltProblem* out) {
+           std::vector<double>* x, BuiltProblem* out,
+           const ResidualRows& which = ResidualRows()) {
   out->loss = MakeLoss(options);
   ceres::Problem::Options problem_options;
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -48,7 +89,8 @@ void Build(const LeastSquaresProblem& lsq, const SolverOptions& options,
     out->blocks.push_back(x->data() + offset);
     offset += size;
   }
-  lsq.add_residuals(out->blocks, out->loss.get(), out->problem.get());
+  out->residuals = lsq.add_residuals(out->blocks, out->loss.get(),
+                                     out->problem.get(), which);
   offset = 0;
   for (size_t b = 0; b < lsq.block_sizes.size(); ++b) {
     const int size = lsq.block_sizes[b];
@@ -111,15 +153,11 @@ void ReportedStddev(const LeastSquaresProblem& lsq,
 // Standard deviations from the Jacobian of the free parameters at the
 // solution (fitting/covariance_internal.h); the parameters the data cannot
 // determine are named instead.
-void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
-            BuiltProblem* built, FitReport* report) {
+void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
+            std::vector<double>* x_in, BuiltProblem* built, FitReport* report) {
+  const std::vector<double>& x = *x_in;
   ceres::Problem::EvaluateOptions eval;
-  for (double* block : built->blocks) {
-    if (built->problem->HasParameterBlock(block) &&
-        !built->problem->IsParameterBlockConstant(block)) {
-      eval.parameter_blocks.push_back(block);
-    }
-  }
+  eval.parameter_blocks = FreeBlocks(*built);
   // Free entries in the Jacobian's column order (blocks in order; a
   // SubsetManifold's tangent space keeps the free entries in order).
   std::vector<int> free_index;
@@ -141,15 +179,29 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
   std::vector<bool> no_effect(x.size(), false);
   const int n = static_cast<int>(free_index.size());
   if (n > 0) {
-    ceres::CRSMatrix crs;
-    std::vector<double> residuals;
-    built->problem->Evaluate(eval, nullptr, &residuals, nullptr, &crs);
-    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-    for (int r = 0; r < crs.num_rows; ++r) {
-      for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) {
-        j(r, crs.cols[k]) = crs.values[k];
+    Eigen::MatrixXd j;
+    Eigen::VectorXd r;
+    EvaluateDense(built, Threads(options), &j, &r);
+    // The rows' own Jacobian for the sandwich's leverages, in blocks of
+    // rows (the solved problem's blocks are compressed).
+    const RowBlockVisitor row_blocks = [&](const auto& visit) {
+      constexpr size_t kBlock = 65536;
+      const size_t rows = lsq.rows;
+      std::vector<uint32_t> subset;
+      for (size_t begin = 0; begin < rows; begin += kBlock) {
+        subset.clear();
+        for (size_t i = begin; i < std::min(rows, begin + kBlock); ++i) {
+          subset.push_back(static_cast<uint32_t>(i));
+        }
+        BuiltProblem part;
+        std::vector<double> xp = x;
+        Build(lsq, options, &xp, &part, ResidualRows{&subset, false});
+        Eigen::MatrixXd jb;
+        Eigen::VectorXd rb;
+        EvaluateDense(&part, Threads(options), &jb, &rb);
+        visit(jb, rb);
       }
-    }
+    };
     // Columns that are zero next to the others: entries that change no
     // residual at the solution (a thread of coverage 0, the volume width
     // at kd = 1).
@@ -163,10 +215,12 @@ void Report(const LeastSquaresProblem& lsq, const std::vector<double>& x,
     if (j.cols() != n) {
       report->identifiability = "not identifiable: internal column mismatch";
     } else {
-      const Eigen::Map<const Eigen::VectorXd> r(residuals.data(),
-                                                residuals.size());
+      // Rows evaluated uncompressed (lsq.rows == 0, a robust loss) are
+      // their own row blocks.
+      const bool compressed = lsq.rows > 0 && built->loss == nullptr;
       const ColumnCovariance cov = CovarianceOfColumns(
-          j, r, lsq.sigma_known, report->final_cost, report->residuals);
+          j, r, lsq.sigma_known, report->final_cost, report->residuals,
+          compressed ? row_blocks : nullptr);
       for (int c = 0; c < n; ++c) {
         stddev[free_index[c]] = cov.stddev[c];
         sandwich[free_index[c]] = cov.sandwich[c];
@@ -280,6 +334,26 @@ void FreeAlso(const std::vector<std::string>& names,
   Mark(names, "--also-free", true, specs);
 }
 
+std::vector<uint32_t> SampleRows(size_t n, size_t m) {
+  std::vector<uint32_t> out;
+  if (m >= n) {
+    out.resize(n);
+    for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint32_t>(i);
+    return out;
+  }
+  out.reserve(m);
+  std::mt19937_64 random(0x5eed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Algorithm S: row i is taken with probability (wanted) / (left).
+  for (size_t i = 0; i < n && out.size() < m; ++i) {
+    if (static_cast<double>(n - i) * u(random) <
+        static_cast<double>(m - out.size())) {
+      out.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  return out;
+}
+
 FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                             const std::vector<std::vector<double>>& starts,
                             const SolverOptions& options,
@@ -289,8 +363,15 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   best.final_cost = HUGE_VAL;
   std::vector<double> best_x;
   int total_iterations = 0;
-  // One solve from x (clamped into the bounds); its summary.
-  auto solve = [&](std::vector<double>* x) {
+  // The starts see a sample of the rows of a large problem.
+  const bool sampled = lsq.rows > kSampleRows;
+  std::vector<uint32_t> sample;
+  if (sampled) sample = SampleRows(lsq.rows, kSampleRows);
+  const ResidualRows start_rows{sampled ? &sample : nullptr, true};
+  size_t solved_residuals = 0;  // of the last solve's rows
+  // One solve from x (clamped into the bounds) on `which` rows; its
+  // summary.
+  auto solve = [&](std::vector<double>* x, const ResidualRows& which) {
     for (size_t i = 0; i < x->size(); ++i) {
       if (lsq.specs[i].free) {
         (*x)[i] =
@@ -298,15 +379,12 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       }
     }
     BuiltProblem built;
-    Build(lsq, options, x, &built);
+    Build(lsq, options, x, &built, which);
+    solved_residuals = built.residuals;
     ceres::Solver::Options solver_options;
     SetCeresLinearSolver(options.linear_solver, &solver_options);
     solver_options.max_num_iterations = options.max_iterations;
-    solver_options.num_threads =
-        options.num_threads > 0
-            ? options.num_threads
-            : std::max(1,
-                       static_cast<int>(std::thread::hardware_concurrency()));
+    solver_options.num_threads = Threads(options);
     solver_options.function_tolerance = 1e-6;
     solver_options.parameter_tolerance = 1e-10;
     solver_options.gradient_tolerance = 1e-14;
@@ -328,7 +406,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     best.termination = ceres::TerminationTypeToString(summary.termination_type);
     best.message = summary.message;
     best.final_cost = summary.final_cost;
-    best.residuals = summary.num_residuals;
+    best.residuals = static_cast<int>(solved_residuals);
     best_x = x;
   };
   // The stopping rule's count: solves whose cost is within kSameBasin of
@@ -352,7 +430,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                        std::to_string(starts.size()));
     }
     std::vector<double> x = starts[s];
-    const ceres::Solver::Summary summary = solve(&x);
+    const ceres::Solver::Summary summary = solve(&x, start_rows);
     const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
     if (usable) costs.push_back(summary.final_cost);
@@ -381,11 +459,12 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   // the weights of the best solution until they settle (iteratively
   // reweighted least squares; a pass changes x by O(F) of its first
   // change, so two or three passes reach the solver's precision).
-  if (lsq.reweight && !best_x.empty()) {
+  auto reweight_passes = [&](const ResidualRows& which) {
+    if (!lsq.reweight || best_x.empty()) return;
     for (int pass = 0; pass < 3; ++pass) {
       lsq.reweight(best_x);
       std::vector<double> x = best_x;
-      const ceres::Solver::Summary summary = solve(&x);
+      const ceres::Solver::Summary summary = solve(&x, which);
       if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost) ||
           !finite_x(x)) {
         break;  // keep the last usable solution (its weights differ a little)
@@ -400,6 +479,24 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       }
       take(summary, x);
       if (change < 1e-9) break;
+    }
+  };
+  reweight_passes(start_rows);
+  // A sample's best, refined on every row: few iterations from there.
+  if (sampled && best.usable) {
+    if (options.progress) {
+      options.progress("refining on all " + std::to_string(lsq.rows) + " rows");
+    }
+    std::vector<double> x = best_x;
+    const ceres::Solver::Summary summary = solve(&x, ResidualRows());
+    if (summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
+        finite_x(x)) {
+      take(summary, x);
+      reweight_passes(ResidualRows());
+    } else {
+      best.usable = best.converged = false;
+      best.message = "the solve on every row failed after the sample's (" +
+                     summary.message + ")";
     }
   }
   best.starts = static_cast<int>(solved);
@@ -421,7 +518,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     BuiltProblem built;
     std::vector<double> x = best_x;
     Build(lsq, options, &x, &built);
-    Report(lsq, x, &built, &best);
+    Report(lsq, options, &x, &built, &best);
     // A free parameter on a search limit: the solver wanted to leave the
     // region where the model means something; not a converged fit.
     // Fewer residuals than free parameters: any solution is one of many.

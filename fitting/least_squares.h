@@ -6,6 +6,7 @@
 // fitting/*.cc.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -63,6 +64,20 @@ std::vector<ParameterSpec> ParameterSpecs(const P& p,
 // The factor on the whole model (models/params.h kModelScale).
 inline constexpr const ParamInfo& kFitScale = kModelScale;
 
+// Which rows LeastSquaresProblem::add_residuals adds, and how.
+struct ResidualRows {
+  // Ascending row indices; null: every row.
+  const std::vector<uint32_t>* subset = nullptr;
+  // Chunks of rows as one residual block each, the triangular factor R of
+  // the QR decomposition of the chunk's [J | r] (n + 1 residuals for n
+  // parameters): R^T R = [J r]^T [J r], so the cost, the gradient J^T r
+  // and the Gauss-Newton matrix J^T J, hence every step of the solver, are
+  // those of the rows themselves, while the solver holds n + 1 residuals
+  // per chunk instead of one per row. false: the chunks' rows as they are.
+  // A robust loss, which acts on each row, gets one block per row.
+  bool compress = true;
+};
+
 // A problem over the blocks of `x`: block b holds x[offset_b, offset_b +
 // size_b). `add_residuals` adds the residual blocks to `problem`, given the
 // block pointers (into the x being solved).
@@ -75,9 +90,15 @@ struct LeastSquaresProblem {
   // 2 cost / (residuals - free parameters), and the report also gives the
   // sandwich estimate.
   bool sigma_known = true;
-  // Adds every residual block; `loss` (may be null) goes to each of them.
-  std::function<void(const std::vector<double*>& blocks,
-                     ceres::LossFunction* loss, ceres::Problem* problem)>
+  // The number of rows add_residuals knows (0: it does not subsample, and
+  // every solve sees every row).
+  size_t rows = 0;
+  // Adds the residual blocks of `which` rows (ResidualRows); `loss` (may be
+  // null) goes to each row. Returns the number of residuals of those rows
+  // (not of the blocks, which compression makes fewer).
+  std::function<size_t(const std::vector<double*>& blocks,
+                       ceres::LossFunction* loss, ceres::Problem* problem,
+                       const ResidualRows& which)>
       add_residuals;
   // Model values and the data, in data units, for rms errors and for
   // naming the row of a non-finite value: called with a solution or a
@@ -87,6 +108,9 @@ struct LeastSquaresProblem {
                      std::vector<double>* measured,
                      std::vector<const TableRow*>* rows)>
       predict;
+  // If set: the table row of row i of add_residuals (i < rows), for
+  // checks that need the rows and not the model (DistinctResiduals).
+  std::function<const TableRow*(size_t i)> row;
   // If set (weights that depend on the model's value, relative noise):
   // recomputes the residuals' weights at x; the solver then solves again
   // from the best solution until the weights settle.
@@ -105,9 +129,24 @@ struct LeastSquaresProblem {
   int stop_after_hits = 0;
 };
 
+// Problems of more rows than this solve their starts (and their
+// reweighting passes) on a sample of kSampleRows rows (SampleRows), and
+// then refine the best on every row; the start searches of the thread and
+// cloth fits work on the same sample.
+inline constexpr size_t kSampleRows = 20000;
+
+// `m` of the indices 0 .. n-1, ascending, spread at random with a fixed
+// seed (selection sampling, Knuth's Algorithm S): no row order aliases
+// with it, as an even stride would with a table's direction grid. All of
+// them when m >= n.
+std::vector<uint32_t> SampleRows(size_t n, size_t m);
+
 // Solves from each start in `starts` (each a full x), keeps the lowest cost,
 // and reports on it; *x receives the best solution. options.progress (if
-// set) is told "start i of n" as it goes.
+// set) is told "start i of n" as it goes. With lsq.rows > kSampleRows the
+// starts are solved on SampleRows(lsq.rows, kSampleRows) and the best is
+// solved again on every row: the report (cost, residuals, covariance) is
+// that of every row.
 FitReport SolveLeastSquares(const LeastSquaresProblem& problem,
                             const std::vector<std::vector<double>>& starts,
                             const SolverOptions& options,

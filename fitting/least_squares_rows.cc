@@ -45,9 +45,13 @@ std::string NonFiniteRow(const LeastSquaresProblem& lsq,
 
 int DistinctResiduals(const LeastSquaresProblem& lsq,
                       const std::vector<double>& x, int residuals, int enough) {
-  std::vector<double> model, measured;
   std::vector<const TableRow*> rows;
-  lsq.predict(x, &model, &measured, &rows);
+  if (lsq.row) {
+    for (size_t i = 0; i < lsq.rows; ++i) rows.push_back(lsq.row(i));
+  } else {
+    std::vector<double> model, measured;
+    lsq.predict(x, &model, &measured, &rows);
+  }
   // A row's pairs are its channels; rows at one place (directions, texel,
   // normal) repeat one measurement.
   using Place = std::tuple<double, double, double, double, double, double, int,

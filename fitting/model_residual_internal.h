@@ -7,12 +7,14 @@
 //   Vec3<T> operator()(const T* const* blocks, size_t i) const;
 //
 // the model's value for its row i from the parameter blocks (the same code
-// runs with double for predictions and with Jets for Ceres). Ceres sees one
-// DynamicAutoDiffCostFunction per row over the blocks the fit names, so
-// that any number of blocks (a weave of 1 to 3 threads, with or without
-// its coverage blocks and the scale) needs no code per layout, and blocks
-// held constant cost no derivatives. Includes Ceres: for fitting/*.cc only
-// (not installed).
+// runs with double for predictions and with Jets for Ceres). The rows'
+// residuals are DynamicAutoDiffCostFunctions over the blocks the fit
+// names, so that any number of blocks (a weave of 1 to 3 threads, with or
+// without its coverage blocks and the scale) needs no code per layout, and
+// blocks held constant cost no derivatives; Ceres sees a chunk of rows as
+// one block of few residuals (ResidualRows::compress), so that its memory
+// and overhead do not grow with the rows' residuals. Includes Ceres: for
+// fitting/*.cc only (not installed).
 #pragma once
 
 #include <ceres/ceres.h>
@@ -46,50 +48,76 @@ struct ResidualBlocks {
   int scale = -1;  // index into `used`, or -1
 };
 
+// The residuals of rows [begin, end) of a list (`subset`, or the rows
+// themselves when it is null), channel by channel: a functor for
+// DynamicAutoDiffCostFunction.
 template <class Evaluator>
 class ModelResidual {
  public:
   // Derivative lanes per pass of DynamicAutoDiffCostFunction: a thread's
   // seven parameters and the scale in one pass.
   static constexpr int kStride = 8;
+  using Cost = ceres::DynamicAutoDiffCostFunction<ModelResidual, kStride>;
 
-  ModelResidual(std::shared_ptr<const Evaluator> evaluator, size_t index,
-                const FitRow& row, int scale_block)
+  ModelResidual(std::shared_ptr<const Evaluator> evaluator,
+                std::shared_ptr<const std::vector<FitRow>> rows,
+                std::shared_ptr<const std::vector<uint32_t>> subset,
+                size_t begin, size_t end, int scale_block)
       : evaluator_(std::move(evaluator)),
-        index_(index),
-        measured_(row.row->value),
-        scale_(row.scale),
-        channels_(row.channels),
+        rows_(std::move(rows)),
+        subset_(std::move(subset)),
+        begin_(begin),
+        end_(end),
         scale_block_(scale_block) {}
+
+  size_t Row(size_t k) const { return subset_ ? (*subset_)[k] : k; }
+
+  // The number of residuals: the channels of the rows.
+  int Residuals() const {
+    int n = 0;
+    for (size_t k = begin_; k < end_; ++k) n += (*rows_)[Row(k)].channels;
+    return n;
+  }
 
   template <typename T>
   bool operator()(const T* const* blocks, T* residual) const {
-    Vec3<T> model = (*evaluator_)(blocks, index_);
-    if (scale_block_ >= 0) model *= blocks[scale_block_][0];
-    for (int c = 0; c < channels_; ++c) {
-      residual[c] = WeightedResidual(model[c], measured_[c], scale_[c]);
+    for (size_t k = begin_; k < end_; ++k) {
+      const size_t i = Row(k);
+      const FitRow& row = (*rows_)[i];
+      Vec3<T> model = (*evaluator_)(blocks, i);
+      if (scale_block_ >= 0) model *= blocks[scale_block_][0];
+      for (int c = 0; c < row.channels; ++c) {
+        *residual++ =
+            WeightedResidual(model[c], row.row->value[c], row.scale[c]);
+      }
     }
     return true;
   }
 
-  static ceres::CostFunction* Create(std::shared_ptr<const Evaluator> evaluator,
-                                     size_t index, const FitRow& row,
-                                     const ResidualBlocks& blocks,
-                                     const std::vector<int>& block_sizes) {
-    auto* cost = new ceres::DynamicAutoDiffCostFunction<ModelResidual, kStride>(
-        new ModelResidual(std::move(evaluator), index, row, blocks.scale));
+  static Cost* Create(ModelResidual* functor, const ResidualBlocks& blocks,
+                      const std::vector<int>& block_sizes) {
+    auto* cost = new Cost(functor);
     for (int b : blocks.used) cost->AddParameterBlock(block_sizes[b]);
-    cost->SetNumResiduals(row.channels);
+    cost->SetNumResiduals(functor->Residuals());
     return cost;
   }
 
  private:
   std::shared_ptr<const Evaluator> evaluator_;
-  size_t index_;
-  glm::dvec3 measured_, scale_;
-  int channels_;
+  std::shared_ptr<const std::vector<FitRow>> rows_;
+  std::shared_ptr<const std::vector<uint32_t>> subset_;
+  size_t begin_, end_;
   int scale_block_;
 };
+
+// Rows per compressed residual block (ResidualRows::compress).
+inline constexpr size_t kChunkRows = 512;
+
+// Adds the compressed residual block of a cost over many rows
+// (fitting/compressed_rows.cc): takes ownership of `rows`.
+void AddCompressedRows(ceres::CostFunction* rows,
+                       const std::vector<double*>& blocks,
+                       ceres::Problem* problem);
 
 // Sets lsq->add_residuals, lsq->predict and lsq->reweight for `rows`
 // evaluated by `evaluator` (row i of the evaluator is rows[i]) over
@@ -101,15 +129,33 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
   const std::vector<int> sizes = lsq->block_sizes;
   // Shared by the three: reweight changes the scales the next solve uses.
   auto rows = std::make_shared<std::vector<FitRow>>(std::move(rows_in));
+  lsq->rows = rows->size();
   lsq->add_residuals = [=](const std::vector<double*>& x,
-                           ceres::LossFunction* loss, ceres::Problem* problem) {
+                           ceres::LossFunction* loss, ceres::Problem* problem,
+                           const ResidualRows& which) {
     std::vector<double*> used;
     for (int b : blocks.used) used.push_back(x[b]);
-    for (size_t i = 0; i < rows->size(); ++i) {
-      problem->AddResidualBlock(ModelResidual<Evaluator>::Create(
-                                    evaluator, i, (*rows)[i], blocks, sizes),
-                                loss, used);
+    std::shared_ptr<const std::vector<uint32_t>> subset;
+    if (which.subset) {
+      subset = std::make_shared<const std::vector<uint32_t>>(*which.subset);
     }
+    const size_t n = subset ? subset->size() : rows->size();
+    // A robust loss acts on each row's residuals: one block per row.
+    const size_t chunk = loss == nullptr ? kChunkRows : 1;
+    size_t residuals = 0;
+    for (size_t begin = 0; begin < n; begin += chunk) {
+      auto* functor = new ModelResidual<Evaluator>(
+          evaluator, rows, subset, begin, std::min(n, begin + chunk),
+          blocks.scale);
+      residuals += functor->Residuals();
+      auto* cost = ModelResidual<Evaluator>::Create(functor, blocks, sizes);
+      if (chunk > 1 && which.compress) {
+        AddCompressedRows(cost, used, problem);
+      } else {
+        problem->AddResidualBlock(cost, loss, used);
+      }
+    }
+    return residuals;
   };
   // The model value of every row at x, in data units.
   auto values = [=](const std::vector<double>& x) {
@@ -126,6 +172,7 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     }
     return out;
   };
+  lsq->row = [rows](size_t i) { return (*rows)[i].row; };
   lsq->predict = [=](const std::vector<double>& x, std::vector<double>* model,
                      std::vector<double>* measured,
                      std::vector<const TableRow*>* row_of) {

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 
+#include "fitting/least_squares.h"
 #include "fitting/residual_weight.h"
 #include "models/microcylinder_cloth.h"
 
@@ -364,6 +365,26 @@ std::vector<StartPoint> SearchStarts(const StartSearchProblem& problem,
     if (ok) kept.push_back(point);
   }
   return kept;
+}
+
+const MeasurementTable& SearchTable(const MeasurementTable& table,
+                                    MeasurementTable* storage) {
+  if (table.rows.size() <= kSampleRows) return table;
+  storage->source = table.source;
+  storage->metadata = table.metadata;
+  storage->quantity = table.quantity;
+  storage->channels = table.channels;
+  storage->direction_columns = table.direction_columns;
+  storage->has_sigma = table.has_sigma;
+  storage->has_weight = table.has_weight;
+  storage->has_texels = table.has_texels;
+  storage->has_alpha = table.has_alpha;
+  storage->has_normal = table.has_normal;
+  storage->rows.clear();
+  for (uint32_t i : SampleRows(table.rows.size(), kSampleRows)) {
+    storage->rows.push_back(table.rows[i]);
+  }
+  return *storage;
 }
 
 }  // namespace clothfit

@@ -53,6 +53,13 @@ struct StartPoint {
   double cost = 0.0;        // sum of squared weighted residuals
 };
 
+// The rows SolveLeastSquares solves the starts on (SampleRows,
+// fitting/least_squares.h) as a table of their own, for the search:
+// `table` itself when it has no more than kSampleRows rows (then *storage
+// is untouched).
+const MeasurementTable& SearchTable(const MeasurementTable& table,
+                                    MeasurementTable* storage);
+
 // The `keep` best distinct starting points (some width a factor of 2 or
 // more apart from every better one), best first. Grid: widths 1, 1.41, 2,
 // 2.83, ..., 90 degrees (a factor sqrt(2) apart) and the initial value,

@@ -62,14 +62,17 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   // Starts: a grid search over the widths (and eta) with the linear
   // parameters (albedo, kd, scale) solved in closed form; the init's values
   // join the grid, fixed entries keep them (fitting/start_search.h).
+  // The search sees the rows the starts are solved on.
+  MeasurementTable sample_storage;
+  const MeasurementTable& sample = SearchTable(table, &sample_storage);
   StartSearchProblem search;
-  search.table = &table;
+  search.table = &sample;
   search.weighting = &weighting;
   search.init = {options.init ? *options.init : ThreadParams()};
   search.contribution = [&](size_t, const ThreadParams& p) {
-    RowValues v(table.rows.size());
+    RowValues v(sample.rows.size());
     for (size_t i = 0; i < v.size(); ++i) {
-      v[i] = Value(p, table.rows[i].wi, table.rows[i].wo, table.quantity);
+      v[i] = Value(p, sample.rows[i].wi, sample.rows[i].wo, sample.quantity);
     }
     return v;
   };

@@ -39,10 +39,11 @@ LeastSquaresProblem PoleProblem(const std::vector<TableRow>& rows) {
   lsq.block_sizes = {1};
   lsq.add_residuals = [&rows](const std::vector<double*>& blocks,
                               ceres::LossFunction* loss,
-                              ceres::Problem* problem) {
+                              ceres::Problem* problem, const ResidualRows&) {
     for (const TableRow& row : rows) {
       problem->AddResidualBlock(PoleResidual::Create(row), loss, blocks[0]);
     }
+    return rows.size();
   };
   lsq.predict = [&rows](const std::vector<double>& x,
                         std::vector<double>* model,

@@ -535,5 +535,37 @@ TEST(ThreadFitFinite, GrazingAndTangentRowsGiveFiniteOutputs) {
   ExpectAllFinite(FitThread(table, ThreadFitOptions()));
 }
 
+// A table of more than kSampleRows rows: the starts are solved on a
+// sample, the best is refined on every row, and the report (residuals,
+// standard deviations) is that of every row: three times the rows of a
+// sample-sized table give standard deviations sqrt(3) smaller.
+TEST(ThreadFitLargeTable, RefinesOnEveryRowAndReportsEveryRow) {
+  const ThreadParams truth = CaseParams("Linen");
+  const int rows = 3 * static_cast<int>(kSampleRows);
+  MeasurementTable all = ThreadTable(truth, 0.01, kSeed, rows);
+  MeasurementTable third = all;
+  third.rows.resize(kSampleRows);
+  for (bool sigma_given : {true, false}) {
+    SCOPED_TRACE(sigma_given ? "sigma column" : "no sigma column");
+    all.has_sigma = third.has_sigma = sigma_given;
+    const ThreadFitResult big = FitThread(all, ThreadFitOptions());
+    const ThreadFitResult small = FitThread(third, ThreadFitOptions());
+    ASSERT_TRUE(big.report.converged) << big.report.message;
+    ASSERT_TRUE(small.report.converged) << small.report.message;
+    EXPECT_EQ(big.report.residuals, 3 * rows);
+    const std::vector<double> t = AsVector(truth);
+    for (size_t i = 0; i < 7; ++i) {
+      const ParameterReport& b = big.report.parameters[i];
+      const ParameterReport& s = small.report.parameters[i];
+      // Without sigma the reported deviation is the sandwich.
+      const double sb = sigma_given ? b.stddev : b.stddev_sandwich;
+      const double ss = sigma_given ? s.stddev : s.stddev_sandwich;
+      ASSERT_GT(sb, 0.0) << b.name;
+      EXPECT_LT(std::abs(b.value - t[i]), 4.0 * sb) << b.name;
+      EXPECT_NEAR(ss / sb, std::sqrt(3.0), 0.25) << b.name;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace clothfit
