@@ -303,7 +303,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   }
   if (options.conserve_energy) {
     std::vector<double> model, measured;
-    lsq.predict(x, &model, &measured, nullptr);
+    PredictAll(lsq, x, &model, &measured, nullptr);
     ConserveEnergyByScale(ModelParams(result.params), model, measured,
                           &result.params.scale, &result.report);
   }

@@ -43,7 +43,7 @@ void ReportModelEnergy(const ModelParams& fitted, FitReport* report);
 // model's `scale`): when ModelEnergy(fitted) exceeds 1, *scale is
 // multiplied by s = 1 / that albedo, so that what is written conserves
 // energy; `model` and `measured` are the fit's predictions at its optimum
-// and the data they match (LeastSquaresProblem::predict), from which the
+// and the data they match (PredictAll), from which the
 // report's rms and relative_rms become the scaled model's. Records the
 // check (max_albedo, max_albedo_at, energy_scale) and, when it scaled,
 // marks the fit not converged (MarkEnergyScaled). Returns s (1: nothing

@@ -154,8 +154,8 @@ void ReportedStddev(const LeastSquaresProblem& lsq,
 // solution (fitting/covariance_internal.h); the parameters the data cannot
 // determine are named instead.
 void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
-            std::vector<double>* x_in, BuiltProblem* built, FitReport* report) {
-  const std::vector<double>& x = *x_in;
+            const std::vector<double>& x, BuiltProblem* built,
+            FitReport* report) {
   ceres::Problem::EvaluateOptions eval;
   eval.parameter_blocks = FreeBlocks(*built);
   // Free entries in the Jacobian's column order (blocks in order; a
@@ -518,7 +518,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     BuiltProblem built;
     std::vector<double> x = best_x;
     Build(lsq, options, &x, &built);
-    Report(lsq, options, &x, &built, &best);
+    Report(lsq, options, x, &built, &best);
     // A free parameter on a search limit: the solver wanted to leave the
     // region where the model means something; not a converged fit.
     // Fewer residuals than free parameters: any solution is one of many.
@@ -548,14 +548,14 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
              "--fix)";
       best.message = msg.str();
     }
-    std::vector<double> model, measured;
-    lsq.predict(x, &model, &measured, nullptr);
     double se = 0.0, ss = 0.0;
-    for (size_t i = 0; i < model.size(); ++i) {
-      se += (model[i] - measured[i]) * (model[i] - measured[i]);
-      ss += measured[i] * measured[i];
-    }
-    const double n = std::max<size_t>(1, model.size());
+    size_t pairs = 0;
+    lsq.predict(x, [&](double model, double measured, const TableRow*) {
+      se += (model - measured) * (model - measured);
+      ss += measured * measured;
+      ++pairs;
+    });
+    const double n = std::max<size_t>(1, pairs);
     best.rms = std::sqrt(se / n);
     best.relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
     *x_out = x;

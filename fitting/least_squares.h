@@ -64,6 +64,10 @@ std::vector<ParameterSpec> ParameterSpecs(const P& p,
 // The factor on the whole model (models/params.h kModelScale).
 inline constexpr const ParamInfo& kFitScale = kModelScale;
 
+// One prediction of LeastSquaresProblem::predict.
+using PredictionVisitor =
+    std::function<void(double model, double measured, const TableRow* row)>;
+
 // Which rows LeastSquaresProblem::add_residuals adds, and how.
 struct ResidualRows {
   // Ascending row indices; null: every row.
@@ -102,11 +106,10 @@ struct LeastSquaresProblem {
       add_residuals;
   // Model values and the data, in data units, for rms errors and for
   // naming the row of a non-finite value: called with a solution or a
-  // start; returns pairs (model, measured) flattened, and (when `rows` is
-  // not null) the table row of each pair.
-  std::function<void(const std::vector<double>& x, std::vector<double>* model,
-                     std::vector<double>* measured,
-                     std::vector<const TableRow*>* rows)>
+  // start; calls `visit` with each pair (model, measured) and its table row,
+  // rows and channels in order (nothing held for all rows: PredictAll).
+  std::function<void(const std::vector<double>& x,
+                     const PredictionVisitor& visit)>
       predict;
   // If set: the table row of row i of add_residuals (i < rows), for
   // checks that need the rows and not the model (DistinctResiduals).
@@ -167,6 +170,12 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
 // nothing.
 void FreeAlso(const std::vector<std::string>& names,
               std::vector<ParameterSpec>* specs);
+
+// lsq.predict's pairs at x, flattened, and (when `rows` is not null) the
+// table row of each pair.
+void PredictAll(const LeastSquaresProblem& lsq, const std::vector<double>& x,
+                std::vector<double>* model, std::vector<double>* measured,
+                std::vector<const TableRow*>* rows);
 
 // The first pair of `lsq.predict` at x whose model value, or its
 // difference from the data, is not finite, named by its table line,

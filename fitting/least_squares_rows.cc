@@ -13,11 +13,21 @@
 
 namespace clothfit {
 
+void PredictAll(const LeastSquaresProblem& lsq, const std::vector<double>& x,
+                std::vector<double>* model, std::vector<double>* measured,
+                std::vector<const TableRow*>* rows) {
+  lsq.predict(x, [&](double m, double d, const TableRow* row) {
+    model->push_back(m);
+    measured->push_back(d);
+    if (rows) rows->push_back(row);
+  });
+}
+
 std::string NonFiniteRow(const LeastSquaresProblem& lsq,
                          const std::vector<double>& x) {
   std::vector<double> model, measured;
   std::vector<const TableRow*> rows;
-  lsq.predict(x, &model, &measured, &rows);
+  PredictAll(lsq, x, &model, &measured, &rows);
   for (size_t i = 0; i < model.size(); ++i) {
     if (std::isfinite(model[i]) && std::isfinite(model[i] - measured[i])) {
       continue;
@@ -50,7 +60,7 @@ int DistinctResiduals(const LeastSquaresProblem& lsq,
     for (size_t i = 0; i < lsq.rows; ++i) rows.push_back(lsq.row(i));
   } else {
     std::vector<double> model, measured;
-    lsq.predict(x, &model, &measured, &rows);
+    PredictAll(lsq, x, &model, &measured, &rows);
   }
   // A row's pairs are its channels; rows at one place (directions, texel,
   // normal) repeat one measurement.

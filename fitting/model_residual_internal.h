@@ -157,8 +157,9 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     }
     return residuals;
   };
-  // The model value of every row at x, in data units.
-  auto values = [=](const std::vector<double>& x) {
+  // Calls each(i, value) with the model value of every row i at x, in
+  // data units.
+  auto values = [=](const std::vector<double>& x, const auto& each) {
     std::vector<const double*> used;
     std::vector<int> offsets(sizes.size() + 1, 0);
     for (size_t b = 0; b < sizes.size(); ++b) {
@@ -166,25 +167,19 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     }
     for (int b : blocks.used) used.push_back(x.data() + offsets[b]);
     const double s = blocks.scale >= 0 ? used[blocks.scale][0] : 1.0;
-    std::vector<glm::dvec3> out(rows->size());
     for (size_t i = 0; i < rows->size(); ++i) {
-      out[i] = (*evaluator)(used.data(), i) * s;
+      each(i, (*evaluator)(used.data(), i) * s);
     }
-    return out;
   };
   lsq->row = [rows](size_t i) { return (*rows)[i].row; };
-  lsq->predict = [=](const std::vector<double>& x, std::vector<double>* model,
-                     std::vector<double>* measured,
-                     std::vector<const TableRow*>* row_of) {
-    const std::vector<glm::dvec3> m = values(x);
-    for (size_t i = 0; i < rows->size(); ++i) {
+  lsq->predict = [=](const std::vector<double>& x,
+                     const PredictionVisitor& visit) {
+    values(x, [&](size_t i, const glm::dvec3& m) {
       const FitRow& row = (*rows)[i];
       for (int c = 0; c < row.channels; ++c) {
-        model->push_back(m[i][c]);
-        measured->push_back(row.row->value[c]);
-        if (row_of) row_of->push_back(row.row);
+        visit(m[c], row.row->value[c], row.row);
       }
-    }
+    });
   };
   bool depends = false;
   for (const FitRow& row : *rows) {
@@ -192,11 +187,10 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
   }
   if (!depends) return;
   lsq->reweight = [=](const std::vector<double>& x) {
-    const std::vector<glm::dvec3> m = values(x);
-    for (size_t i = 0; i < rows->size(); ++i) {
+    values(x, [&](size_t i, const glm::dvec3& m) {
       FitRow& row = (*rows)[i];
-      row.scale = row.weighting->ScaleAt(*row.row, m[i]);
-    }
+      row.scale = row.weighting->ScaleAt(*row.row, m);
+    });
   };
 }
 

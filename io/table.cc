@@ -1,7 +1,9 @@
 #include "io/table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -113,7 +115,13 @@ ReadTableResult ParseTable(const std::string& text, const std::string& name,
   return TableParser(name, options).Parse(text);
 }
 
-std::string FormatTable(const MeasurementTable& table) {
+namespace {
+
+// The text of FormatTable, handed to `sink` in pieces of about 1 MiB (a
+// table of millions of rows is never held as one string).
+void FormatTableTo(const MeasurementTable& table,
+                   const std::function<void(const std::string&)>& sink) {
+  constexpr size_t kPiece = 1 << 20;
   const bool vectors = table.direction_columns == DirectionColumns::kVectors;
   // Transmittance tables leave out the incident direction unless a row has
   // one other than the default +z, which would otherwise be lost.
@@ -205,11 +213,13 @@ std::string FormatTable(const MeasurementTable& table) {
       out += ',' + std::to_string(row.s) + ',' + std::to_string(row.t);
     }
     out += '\n';
+    if (out.size() >= kPiece) {
+      sink(out);
+      out.clear();
+    }
   }
-  return out;
+  sink(out);
 }
-
-namespace {
 
 // Throws unless every number of the rows is one ReadTable reads back: finite,
 // and values, sigmas and weights at most kMaxTableMagnitude in magnitude.
@@ -240,9 +250,17 @@ void CheckRowsReadable(const MeasurementTable& table, const std::string& path) {
 
 }  // namespace
 
+std::string FormatTable(const MeasurementTable& table) {
+  std::string text;
+  FormatTableTo(table, [&](const std::string& piece) { text += piece; });
+  return text;
+}
+
 void WriteTable(const MeasurementTable& table, const std::string& path) {
   CheckRowsReadable(table, path);
-  WriteFileAtomically(path, FormatTable(table));
+  OutputFile out(path);
+  FormatTableTo(table, [&](const std::string& piece) { out.Write(piece); });
+  out.Commit();
 }
 
 glm::dvec3 DirectionFromAngles(double theta, double phi) {

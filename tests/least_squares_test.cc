@@ -46,13 +46,9 @@ LeastSquaresProblem PoleProblem(const std::vector<TableRow>& rows) {
     return rows.size();
   };
   lsq.predict = [&rows](const std::vector<double>& x,
-                        std::vector<double>* model,
-                        std::vector<double>* measured,
-                        std::vector<const TableRow*>* out_rows) {
+                        const PredictionVisitor& visit) {
     for (const TableRow& row : rows) {
-      model->push_back(PoleModel(x[0], row));
-      measured->push_back(row.value.x);
-      if (out_rows) out_rows->push_back(&row);
+      visit(PoleModel(x[0], row), row.value.x, &row);
     }
   };
   return lsq;

@@ -636,6 +636,25 @@ TEST(TableTest, NumbersAsStrtodSpellsThem) {
               {"data.csv:2:5:", "cannot parse"});
 }
 
+// A table of many megabytes is written in pieces; the file is the text
+// FormatTable makes, and reads back row for row.
+TEST(TableTest, ALargeTableIsWrittenWholeInPieces) {
+  MeasurementTable table = SampleTable(DirectionColumns::kAngles);
+  const TableRow first = table.rows[0];
+  table.rows.assign(40000, first);
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    table.rows[i].value.x = 0.001 * static_cast<double>(i);
+  }
+  const fs::path path = TestDir() / "large.csv";
+  WriteTable(table, path.string());
+  const std::string text = ReadFileToString(path.string());
+  EXPECT_GT(text.size(), 3u << 20);  // several pieces of ~1 MiB
+  EXPECT_EQ(text, FormatTable(table));
+  const MeasurementTable back = ReadTable(path.string()).table;
+  ASSERT_EQ(back.rows.size(), table.rows.size());
+  EXPECT_EQ(back.rows.back().value.x, table.rows.back().value.x);
+}
+
 TEST(TableTest, RoundTripAngles) {
   const MeasurementTable table = SampleTable(DirectionColumns::kAngles);
   const fs::path path = TestDir() / "angles.csv";
