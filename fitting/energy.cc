@@ -25,10 +25,16 @@ void Consider(const glm::dvec3& albedo, const glm::dvec3& d, EnergyCheck* e) {
 
 EnergyCheck LafortuneEnergy(const LafortuneModel& m) {
   EnergyCheck out;
+  // The bracket's albedo (smooth in the view) on a grid, and at each view
+  // whose T is not 1 (there T scales it): a table without a lookup table
+  // (T = 1) of a million distinct views costs no more than the grid.
   std::vector<glm::dvec3> dirs = FurnaceDirections(12);
-  for (const glm::dvec3& v : m.lut.views) {
+  for (size_t i = 0; i < m.lut.views.size(); ++i) {
+    const glm::dvec3& v = m.lut.views[i];
     const double len = glm::length(v);
-    if (len > 0.0 && v.z > 0.0) dirs.push_back(v / len);
+    const bool scaled =
+        i >= m.lut.color.size() || m.lut.color[i] != glm::dvec3(1.0);
+    if (len > 0.0 && v.z > 0.0 && scaled) dirs.push_back(v / len);
   }
   const TexelFrame frame = MakeTexelFrame(m.normal);
   std::vector<glm::dvec3> local(dirs.size());

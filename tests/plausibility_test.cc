@@ -103,6 +103,32 @@ TEST(LafortuneEnergy, BrightTexelIsScaledToAlbedoOneAndReported) {
   EXPECT_NEAR(LafortuneEnergy(m).max_albedo, 1.0, 1e-9);
 }
 
+// The views of a lookup table enter the check where T scales them: T = 1
+// at 20,000 views (a table without a lookup table) gives the grid's result
+// at no extra cost, and one view at T = 3 gives 3 times the bracket's
+// albedo there.
+TEST(LafortuneEnergy, ViewsCountWhereTheirLookupValueScalesThem) {
+  LafortuneModel m;
+  m.params.diffuse = glm::dvec3(0.05);
+  m.params.lobes = {LafortuneLobe()};
+  m.params.lobes[0].cx = m.params.lobes[0].cy = glm::dvec3(-0.6);
+  m.params.lobes[0].cz = glm::dvec3(0.6);
+  m.params.lobes[0].n = glm::dvec3(8.0);
+  const double grid = LafortuneEnergy(m).max_albedo;
+  for (int i = 0; i < 20000; ++i) {
+    m.lut.views.push_back(Direction(0.004 * i, 0.017 * i));
+    m.lut.color.push_back(glm::dvec3(1.0));
+  }
+  EXPECT_EQ(LafortuneEnergy(m).max_albedo, grid);
+  const glm::dvec3 v = Direction(55, 40);
+  m.lut.views.push_back(v);
+  m.lut.color.push_back(glm::dvec3(3.0));
+  const glm::dvec3 there = LafortuneBracketAlbedo(m.params, v);
+  const double expected =
+      std::max(grid, 3.0 * std::max({there.x, there.y, there.z}));
+  EXPECT_NEAR(LafortuneEnergy(m).max_albedo, expected, 1e-12 * expected);
+}
+
 // Thread and cloth fits report the white furnace of what they wrote: the
 // linen preset's largest albedo (at the normal) agrees with a fine
 // quadrature; its single thread, as Sadeghi et al.'s model has it,
