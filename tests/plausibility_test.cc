@@ -118,11 +118,14 @@ TEST(LafortuneEnergy, ViewsCountWhereTheirLookupValueScalesThem) {
   for (int i = 0; i < 20000; ++i) {
     m.lut.views.push_back(Direction(0.004 * i, 0.017 * i));
     m.lut.color.push_back(glm::dvec3(1.0));
+    m.lut.alpha.push_back(1.0);
   }
   EXPECT_EQ(LafortuneEnergy(m).max_albedo, grid);
   const glm::dvec3 v = Direction(55, 40);
   m.lut.views.push_back(v);
   m.lut.color.push_back(glm::dvec3(3.0));
+  m.lut.alpha.push_back(1.0);
+  ASSERT_EQ(ValidateViewTable(m.lut), "");
   const glm::dvec3 there = LafortuneBracketAlbedo(m.params, v);
   const double expected =
       std::max(grid, 3.0 * std::max({there.x, there.y, there.z}));
