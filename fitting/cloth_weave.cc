@@ -163,7 +163,8 @@ RowSamples ComputeRowSamples(const ClothParams& cloth,
       out.per_thread[j].push_back(sample);
       if (eta_fixed[j]) {
         out.fresnel[j].push_back(
-            sample.valid ? ThreadFresnel(sample.geometry, th.params.eta) : 0.0);
+            sample.weight > 0.0 ? ThreadFresnel(sample.geometry, th.params.eta)
+                                : 0.0);
       }
     }
   }

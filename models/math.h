@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 
 // GLM's vectors hold x/r/s in anonymous unions, which delete copying for
 // scalar types with non-trivial copies such as Ceres Jets. Plain x, y, z
@@ -59,6 +60,20 @@ constexpr T Radians(const T& degrees) {
 template <typename T>
 constexpr T Degrees(const T& radians) {
   return radians * T(180.0 / kPi);
+}
+
+// exp(-x) for x >= 0. Where the result is below half the smallest
+// subnormal of a floating-point T (x > 105 for float, 746 for double) it is
+// exactly 0, returned without the library's slow underflow path (a
+// narrow Gaussian lobe's tail in float). Jets take exp as it is.
+template <typename T>
+inline T ExpNeg(const T& x) {
+  using std::exp;
+  if constexpr (std::is_floating_point_v<T>) {
+    constexpr T kZeroBeyond = sizeof(T) == sizeof(float) ? T(105) : T(746);
+    if (x > kZeroBeyond) return T(0);
+  }
+  return exp(-x);
 }
 
 // Converts a vector to the scalar type T.

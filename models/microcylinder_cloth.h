@@ -218,16 +218,27 @@ inline std::string ValidateClothParams(const ClothParams& c) {
   return CheckParam(kModelScale, c.scale);
 }
 
+// u(angle_d) of eq. 9: the weight of the min term in M and P.
+template <typename T>
+T MaskingBlend(const T& angle_d) {
+  constexpr double kWidth = Radians(20.0);
+  return ExpNeg(angle_d * angle_d / T(2.0 * kWidth * kWidth));
+}
+
 // Shadowing/masking M (eq. 8) or reweighting P (eq. 10) from the cosines of
-// the two projections and the angle between them.
+// the two projections and u = MaskingBlend(angle between them), which
+// `blend()` returns: it is asked for only when both cosines are > 0, as
+// both terms vanish otherwise (value and derivative).
+template <typename T, typename Blend>
+T MaskingTermWith(const T& cos_i, const T& cos_o, const Blend& blend) {
+  if (!(cos_i > T(0.0) && cos_o > T(0.0))) return T(0.0);
+  const T u = blend();
+  return (T(1.0) - u) * cos_i * cos_o + u * Min(cos_i, cos_o);
+}
+
 template <typename T>
 T MaskingTerm(const T& cos_i, const T& cos_o, const T& angle_d) {
-  using std::exp;
-  constexpr double kWidth = Radians(20.0);  // u(x), eq. 9
-  // Both terms vanish (value and derivative) unless both cosines are > 0.
-  if (!(cos_i > T(0.0) && cos_o > T(0.0))) return T(0.0);
-  const T u = exp(-angle_d * angle_d / T(2.0 * kWidth * kWidth));
-  return (T(1.0) - u) * cos_i * cos_o + u * Min(cos_i, cos_o);
+  return MaskingTermWith(cos_i, cos_o, [&] { return MaskingBlend(angle_d); });
 }
 
 // One tangent sample of a thread seen from (wi, wo): its geometry and the
@@ -235,9 +246,25 @@ T MaskingTerm(const T& cos_i, const T& cos_o, const T& angle_d) {
 template <typename G>
 struct TangentSample {
   bool valid = false;  // both projections defined (else it contributes 0)
+  // Complete only where weight > 0 (ComputeTangentSample); the lobes read
+  // it there alone.
   ThreadGeometry<G> geometry;
   G weight = G(0.0);    // M P cos(theta_i): multiplies f_s in S_j (eq. 11)
   G reweight = G(0.0);  // P: the sample's term of W_j (eq. 12)
+};
+
+// What the samples of one thread share: the axis b = t x n is d x z for
+// every tangent offset, so the projections of wi and wo on the (t, n)
+// plane (psi of eq. 10), their lengths, the angle psi_d between them and
+// its blend u are the thread's; only cos psi against each sample's n
+// differs. `valid` is false where a projection vanishes (no sample of the
+// thread contributes).
+template <typename G>
+struct PsiPlane {
+  bool valid = false;
+  Vec3<G> qi, qo;
+  G qi_len, qo_len;
+  G u;  // MaskingBlend(psi_d)
 };
 
 // The direction of a thread in the surface frame: +x (warp, "u") or +y
@@ -252,31 +279,117 @@ Vec3<G> ThreadAxis(ThreadDirection direction, const G& rotation_deg) {
                                           : Vec3<G>(-s, c, G(0.0));
 }
 
-// The sample at tangent offset `offset_deg` of a thread along `direction`
-// in a weave turned by `rotation_deg`.
+// The tangent t and local normal n of a sample at tangent offset
+// `offset_deg` of a thread along `direction` in a weave turned by
+// `rotation_deg`: t = cos(psi) d + sin(psi) z, n = cos(psi) z - sin(psi) d.
+// They depend on the parameters alone, so a renderer computes them once
+// per material (models/prepared.h).
 template <typename G>
-TangentSample<G> ComputeTangentSample(ThreadDirection direction,
-                                      const G& rotation_deg,
-                                      const G& offset_deg, const Vec3<G>& wi,
-                                      const Vec3<G>& wo) {
+struct TangentFrame {
+  Vec3<G> t, n;
+};
+
+template <typename G>
+TangentFrame<G> MakeTangentFrame(ThreadDirection direction,
+                                 const G& rotation_deg, const G& offset_deg) {
   using std::cos;
   using std::sin;
   const Vec3<G> d = ThreadAxis(direction, rotation_deg);
   const Vec3<G> z(G(0.0), G(0.0), G(1.0));
   const G psi = Radians(offset_deg);
   const G c = cos(psi), s = sin(psi);
+  return {d * c + z * s, z * c - d * s};
+}
+
+// The psi plane of the thread of frame f (any of its samples).
+template <typename G>
+PsiPlane<G> MakePsiPlane(const TangentFrame<G>& f, const Vec3<G>& wi,
+                         const Vec3<G>& wo) {
+  using std::sqrt;
+  PsiPlane<G> plane;
+  const Vec3<G> b = glm::cross(f.t, f.n);
+  plane.qi = wi - b * glm::dot(wi, b);
+  plane.qo = wo - b * glm::dot(wo, b);
+  const G qi2 = glm::dot(plane.qi, plane.qi);
+  const G qo2 = glm::dot(plane.qo, plane.qo);
+  const G kMin(kMinProjectionLength2);
+  if (!(qi2 > kMin && qo2 > kMin)) return plane;
+  plane.valid = true;
+  plane.qi_len = sqrt(qi2);
+  plane.qo_len = sqrt(qo2);
+  plane.u = MaskingBlend(
+      AngleBetween(plane.qi, plane.qo, plane.qi_len * plane.qo_len));
+  return plane;
+}
+
+// The sample of frame f seen from (wi, wo), its thread's psi plane given.
+// The geometry is completed only as far as the masking terms leave the
+// sample a share: without P (eq. 10) it adds nothing to W_j, without M
+// (eq. 8) nothing to S_j, and the lobes' angles (theta_h, theta_d,
+// phi_d / 2) are computed only for a positive weight, the one case
+// ThreadSums reads them.
+template <typename G>
+TangentSample<G> ComputeTangentSample(const TangentFrame<G>& f,
+                                      const PsiPlane<G>& plane,
+                                      const Vec3<G>& wi, const Vec3<G>& wo) {
   TangentSample<G> out;
-  out.geometry = ComputeThreadGeometry<G>(d * c + z * s, z * c - d * s, wi, wo);
-  const ThreadGeometry<G>& g = out.geometry;
-  if (!g.valid || !g.psi_valid) return out;  // SPEC: contributes nothing
+  if (!plane.valid) return out;  // contributes nothing
+  ThreadGeometry<G>& g = out.geometry;
+  Vec3<G> pi, po;
+  if (!ProjectOnThread(f.t, f.n, wi, wo, &g, &pi, &po)) return out;
   out.valid = true;
-  out.reweight = MaskingTerm(g.cos_psi_i, g.cos_psi_o, g.psi_d);
-  if (out.reweight > G(0.0)) {
-    out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * out.reweight *
-                 g.cos_theta_i;
-  }
+  out.reweight = MaskingTermWith(G(glm::dot(plane.qi, f.n) / plane.qi_len),
+                                 G(glm::dot(plane.qo, f.n) / plane.qo_len),
+                                 [&] { return plane.u; });
+  if (!(out.reweight > G(0.0))) return out;
+  ThreadAzimuthDifference(pi, po, &g);
+  out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * out.reweight *
+               g.cos_theta_i;
+  if (out.weight > G(0.0)) ThreadHalfAngles(pi, po, &g);
   return out;
 }
+
+template <typename G>
+TangentSample<G> ComputeTangentSample(ThreadDirection direction,
+                                      const G& rotation_deg,
+                                      const G& offset_deg, const Vec3<G>& wi,
+                                      const Vec3<G>& wo) {
+  const TangentFrame<G> f =
+      MakeTangentFrame(direction, rotation_deg, offset_deg);
+  return ComputeTangentSample(f, MakePsiPlane(f, wi, wo), wi, wo);
+}
+
+// A cloth's samples seen from (wi, wo), computed as ThreadSums asks for
+// them (the Samples of ClothRhoFromSamples): frames.Count(j) and
+// frames.Get(j, k) give thread j's sample frames; the psi plane is
+// computed once per thread, at the first sample asked for.
+template <typename G, typename Frames>
+class SamplesFromFrames {
+ public:
+  SamplesFromFrames(const Frames& frames, const Vec3<G>& wi, const Vec3<G>& wo)
+      : frames_(frames), wi_(wi), wo_(wo) {}
+  int Count(size_t j) const { return frames_.Count(j); }
+  TangentSample<G> Get(size_t j, int k) const {
+    const TangentFrame<G> f = frames_.Get(j, k);
+    if (j != plane_thread_) {
+      plane_ = MakePsiPlane(f, wi_, wo_);
+      plane_thread_ = j;
+    }
+    return ComputeTangentSample(f, plane_, wi_, wo_);
+  }
+  template <typename T>
+  ThreadLobes<T> Lobes(size_t, int, const TangentSample<G>& sample,
+                       const ThreadParamsT<T>& params) const {
+    return ThreadLobesOf(sample.geometry, params);
+  }
+
+ private:
+  const Frames& frames_;
+  const Vec3<G>& wi_;
+  const Vec3<G>& wo_;
+  mutable PsiPlane<G> plane_;
+  mutable size_t plane_thread_ = static_cast<size_t>(-1);
+};
 
 // Thread j's sums of eq. 11-12 over its samples: S_j = (1/T_j) sum_t f_s M
 // P cos(theta_i) and W_j = (1/T_j) sum_t P (both 0 without samples).
@@ -348,29 +461,36 @@ Vec3<T> ClothRhoFromSamples(const ClothParamsT<T>& cloth,
   return sum / q + diffuse;
 }
 
-// Cosine-weighted BRDF rho(wi, wo) = f |wi.z| of a cloth patch, per channel.
+// Cosine-weighted BRDF rho(wi, wo) = f |wi.z| of a cloth patch, per
+// channel, with the sample frames from `frames` (SamplesFromFrames): made
+// from the offsets on the fly (ClothRho), or once per material
+// (models/prepared.h).
+template <typename T, typename Frames>
+Vec3<T> ClothRhoWithFrames(const ClothParamsT<T>& cloth, const Frames& frames,
+                           const Vec3<T>& wi, const Vec3<T>& wo) {
+  if (!(wi.z > T(0.0) && wo.z > T(0.0))) return Vec3<T>(T(0.0));
+  return ClothRhoFromSamples(
+      cloth, SamplesFromFrames<T, Frames>(frames, wi, wo), wi.z);
+}
+
+// The frames of a cloth's samples from its offsets and rotation.
+template <typename T>
+struct ClothFramesOnTheFly {
+  const ClothParamsT<T>& cloth;
+  int Count(size_t j) const {
+    return static_cast<int>(cloth.threads[j].offsets_deg.size());
+  }
+  TangentFrame<T> Get(size_t j, int k) const {
+    const ClothThreadT<T>& th = cloth.threads[j];
+    return MakeTangentFrame(th.direction, cloth.rotation_deg,
+                            th.offsets_deg[k]);
+  }
+};
+
 template <typename T>
 Vec3<T> ClothRho(const ClothParamsT<T>& cloth, const Vec3<T>& wi,
                  const Vec3<T>& wo) {
-  if (!(wi.z > T(0.0) && wo.z > T(0.0))) return Vec3<T>(T(0.0));
-  struct OnTheFly {
-    const ClothParamsT<T>& cloth;
-    const Vec3<T>& wi;
-    const Vec3<T>& wo;
-    int Count(size_t j) const {
-      return static_cast<int>(cloth.threads[j].offsets_deg.size());
-    }
-    TangentSample<T> Get(size_t j, int k) const {
-      const ClothThreadT<T>& th = cloth.threads[j];
-      return ComputeTangentSample(th.direction, cloth.rotation_deg,
-                                  th.offsets_deg[k], wi, wo);
-    }
-    ThreadLobes<T> Lobes(size_t, int, const TangentSample<T>& sample,
-                         const ThreadParamsT<T>& params) const {
-      return ThreadLobesOf(sample.geometry, params);
-    }
-  };
-  return ClothRhoFromSamples(cloth, OnTheFly{cloth, wi, wo}, wi.z);
+  return ClothRhoWithFrames(cloth, ClothFramesOnTheFly<T>{cloth}, wi, wo);
 }
 
 template <typename T>

@@ -120,9 +120,7 @@ inline constexpr int kThreadFlatSize = 7;
 // Unit-area Gaussian of width s (radians), SPEC §3.1 g(s, x).
 template <typename T>
 T NormalizedGaussian(const T& s, const T& x) {
-  using std::exp;
-  using std::sqrt;
-  return exp(-x * x / (T(2.0) * s * s)) / (s * T(std::sqrt(2.0 * kPi)));
+  return ExpNeg(x * x / (T(2.0) * s * s)) / (s * T(std::sqrt(2.0 * kPi)));
 }
 
 // Unpolarised Fresnel reflectance of a dielectric of relative index eta > 1
@@ -141,80 +139,95 @@ T FresnelDielectric(const T& cos_theta, const T& eta) {
 // n perpendicular to t, and b = t x n).
 template <typename T>
 struct ThreadGeometry {
-  bool valid = false;      // theta/phi defined (azimuthal projections > 0)
-  bool psi_valid = false;  // psi defined (projections on (t, n) > 0)
+  bool valid = false;  // theta/phi defined (azimuthal projections > 0)
   T sin_theta_i, sin_theta_o;
   T cos_theta_i, cos_theta_o;
   T theta_h;               // (theta_i + theta_o) / 2
   T cos2_theta_d;          // cos^2((theta_i - theta_o) / 2)
   T cos_half_phi_d;        // cos(phi_d / 2)
   T cos_phi_i, cos_phi_o;  // azimuthal projections against n
-  T cos_psi_i, cos_psi_o;  // projections on (t, n) against n
-  // phi_d, psi_d in [0, pi]. They enter only the masking terms M and P,
-  // which vanish unless both of their cosines are positive; elsewhere they
-  // are left at 0 to spare two arctangents.
+  // phi_d in [0, pi]. It enters only the cloth's masking term M, which
+  // vanishes unless both cos phi are positive; elsewhere it is left at 0
+  // to spare an arctangent.
   T phi_d = T(0.0);
-  T psi_d = T(0.0);
 };
 
 // Projections shorter than this (squared) count as zero length.
 inline constexpr double kMinProjectionLength2 = 1e-24;
 
+// The steps of ComputeThreadGeometry, so that a cloth's tangent sample
+// (models/microcylinder_cloth.h) takes only those its masking terms leave
+// non-zero; each sets the fields its comment names.
+
+// The projections of wi and wo on the normal plane of t (azimuth phi):
+// sin/cos theta, cos phi against n, and `valid`. pi and po receive the
+// projections. False (valid stays false) where one has no azimuth.
+template <typename T>
+bool ProjectOnThread(const Vec3<T>& t, const Vec3<T>& n, const Vec3<T>& wi,
+                     const Vec3<T>& wo, ThreadGeometry<T>* g, Vec3<T>* pi,
+                     Vec3<T>* po) {
+  using std::sqrt;
+  g->sin_theta_i = glm::dot(wi, t);
+  g->sin_theta_o = glm::dot(wo, t);
+  *pi = wi - t * g->sin_theta_i;
+  *po = wo - t * g->sin_theta_o;
+  const T pi2 = glm::dot(*pi, *pi);
+  const T po2 = glm::dot(*po, *po);
+  const T kMin(kMinProjectionLength2);
+  if (!(pi2 > kMin && po2 > kMin)) return false;
+  g->valid = true;
+  g->cos_theta_i = sqrt(pi2);
+  g->cos_theta_o = sqrt(po2);
+  g->cos_phi_i = glm::dot(*pi, n) / g->cos_theta_i;
+  g->cos_phi_o = glm::dot(*po, n) / g->cos_theta_o;
+  return true;
+}
+
+// phi_d from the projections, where both cos phi are positive (elsewhere
+// the masking term it enters vanishes and it stays 0).
+template <typename T>
+void ThreadAzimuthDifference(const Vec3<T>& pi, const Vec3<T>& po,
+                             ThreadGeometry<T>* g) {
+  if (g->cos_phi_i > T(0.0) && g->cos_phi_o > T(0.0)) {
+    g->phi_d = AngleBetween(pi, po, g->cos_theta_i * g->cos_theta_o);
+  }
+}
+
+// theta_h, cos^2(theta_d) and cos(phi_d / 2): what the lobes read.
+// Half-angle identities spare three of the four trigonometric calls:
+//   theta_h = atan(sin(theta_i + theta_o) / (1 + cos(theta_i + theta_o)))
+//   cos^2(theta_d) = (1 + cos(theta_i - theta_o)) / 2
+//   cos(phi_d / 2) = |unit pi + unit po| / 2.
+// theta_i + theta_o lies in (-pi, pi) for valid geometry, so the first
+// denominator is positive.
+template <typename T>
+void ThreadHalfAngles(const Vec3<T>& pi, const Vec3<T>& po,
+                      ThreadGeometry<T>* g) {
+  using std::atan;
+  const T cos_sum =
+      g->cos_theta_i * g->cos_theta_o - g->sin_theta_i * g->sin_theta_o;
+  const T sin_sum =
+      g->sin_theta_i * g->cos_theta_o + g->cos_theta_i * g->sin_theta_o;
+  const T cos_diff =
+      g->cos_theta_i * g->cos_theta_o + g->sin_theta_i * g->sin_theta_o;
+  g->theta_h = atan(sin_sum / (T(1.0) + cos_sum));
+  g->cos2_theta_d = Max(T(0.5) * (T(1.0) + cos_diff), T(0.0));
+  // cos(phi_d / 2) = |pi / |pi| + po / |po|| / 2: free of the
+  // cancellation of 1 + cos(phi_d) at opposite azimuths (in float,
+  // sqrt((1 + cos phi_d) / 2) lost two digits at 89.9 degrees).
+  const Vec3<T> half = pi / g->cos_theta_i + po / g->cos_theta_o;
+  g->cos_half_phi_d = Min(T(0.5) * SafeSqrt(glm::dot(half, half)), T(1.0));
+}
+
+// Every field of the geometry (where valid).
 template <typename T>
 ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
                                         const Vec3<T>& wi, const Vec3<T>& wo) {
-  using std::atan;
-  using std::sqrt;
   ThreadGeometry<T> g;
-  g.sin_theta_i = glm::dot(wi, t);
-  g.sin_theta_o = glm::dot(wo, t);
-  // Projections on the normal plane of t (azimuth phi).
-  const Vec3<T> pi = wi - t * g.sin_theta_i;
-  const Vec3<T> po = wo - t * g.sin_theta_o;
-  const T pi2 = glm::dot(pi, pi);
-  const T po2 = glm::dot(po, po);
-  // Projections on the plane of t and n (psi): remove the b component.
-  const Vec3<T> b = glm::cross(t, n);
-  const Vec3<T> qi = wi - b * glm::dot(wi, b);
-  const Vec3<T> qo = wo - b * glm::dot(wo, b);
-  const T qi2 = glm::dot(qi, qi);
-  const T qo2 = glm::dot(qo, qo);
-  const T kMin(kMinProjectionLength2);
-  if (!(pi2 > kMin && po2 > kMin)) return g;
-  g.valid = true;
-  g.cos_theta_i = sqrt(pi2);
-  g.cos_theta_o = sqrt(po2);
-  // Half-angle identities spare three of the four trigonometric calls:
-  //   theta_h = atan(sin(theta_i + theta_o) / (1 + cos(theta_i + theta_o)))
-  //   cos^2(theta_d) = (1 + cos(theta_i - theta_o)) / 2
-  //   cos(phi_d / 2) = sqrt((1 + cos phi_d) / 2).
-  // theta_i + theta_o lies in (-pi, pi) for valid geometry, so the first
-  // denominator is positive.
-  const T cos_sum =
-      g.cos_theta_i * g.cos_theta_o - g.sin_theta_i * g.sin_theta_o;
-  const T sin_sum =
-      g.sin_theta_i * g.cos_theta_o + g.cos_theta_i * g.sin_theta_o;
-  const T cos_diff =
-      g.cos_theta_i * g.cos_theta_o + g.sin_theta_i * g.sin_theta_o;
-  g.theta_h = atan(sin_sum / (T(1.0) + cos_sum));
-  g.cos2_theta_d = Max(T(0.5) * (T(1.0) + cos_diff), T(0.0));
-  const T cos_phi_d = Clamp(glm::dot(pi, po) / (g.cos_theta_i * g.cos_theta_o),
-                            T(-1.0), T(1.0));
-  g.cos_half_phi_d = SafeSqrt(T(0.5) * (T(1.0) + cos_phi_d));
-  g.cos_phi_i = glm::dot(pi, n) / g.cos_theta_i;
-  g.cos_phi_o = glm::dot(po, n) / g.cos_theta_o;
-  if (g.cos_phi_i > T(0.0) && g.cos_phi_o > T(0.0)) {
-    g.phi_d = AngleBetween(pi, po, g.cos_theta_i * g.cos_theta_o);
-  }
-  if (!(qi2 > kMin && qo2 > kMin)) return g;
-  g.psi_valid = true;
-  const T qi_len = sqrt(qi2);
-  const T qo_len = sqrt(qo2);
-  g.cos_psi_i = glm::dot(qi, n) / qi_len;
-  g.cos_psi_o = glm::dot(qo, n) / qo_len;
-  if (g.cos_psi_i > T(0.0) && g.cos_psi_o > T(0.0)) {
-    g.psi_d = AngleBetween(qi, qo, qi_len * qo_len);
-  }
+  Vec3<T> pi, po;
+  if (!ProjectOnThread(t, n, wi, wo, &g, &pi, &po)) return g;
+  ThreadHalfAngles(pi, po, &g);
+  ThreadAzimuthDifference(pi, po, &g);
   return g;
 }
 
