@@ -14,7 +14,8 @@ namespace clothfit {
 namespace {
 
 // Nearest texel index along an axis of n texels for a coordinate in [0, 1].
-int TexelIndex(double u, int n) noexcept {
+template <typename Real>
+int TexelIndex(Real u, int n) noexcept {
   if (!(u > 0.0)) return 0;  // also NaN
   const int i = static_cast<int>(u * n);
   return i >= n ? n - 1 : i;
@@ -22,32 +23,35 @@ int TexelIndex(double u, int n) noexcept {
 
 }  // namespace
 
-Material::Level Material::OneTexel(const ModelParams& params,
-                                   const std::string& name) {
+template <typename Real>
+typename MaterialT<Real>::Level MaterialT<Real>::OneTexel(
+    const ModelParams& params, const std::string& name) {
   const std::string error = ValidateModel(params);
   if (!error.empty()) throw InputError(name + ": " + error);
   Level level;
-  level.texels.push_back(params);
+  level.texels.push_back(PrepareModel<Real>(params));
   return level;
 }
 
-Material Material::FromParams(const ModelParams& params) {
-  Material m;
+template <typename Real>
+MaterialT<Real> MaterialT<Real>::FromParams(const ModelParams& params) {
+  MaterialT m;
   m.kind_ = ModelName(params);
   m.levels_.push_back(OneTexel(params, "<parameters>"));
   return m;
 }
 
-Material Material::Load(const std::string& path) {
+template <typename Real>
+MaterialT<Real> MaterialT<Real>::Load(const std::string& path) {
   if (!text_util::HasExtension(path, ".exr")) {
     const ParamFile file = ReadParamFile(path);
-    Material m;
+    MaterialT m;
     m.kind_ = ModelName(file.params);
     m.levels_.push_back(OneTexel(file.params, path));
     return m;
   }
   const ParamMipmap mipmap = ReadParamMipmap(path);
-  Material m;
+  MaterialT m;
   m.kind_ = "lafortune_mipmap";
   for (size_t l = 0; l < mipmap.levels.size(); ++l) {
     Level level;
@@ -55,7 +59,7 @@ Material Material::Load(const std::string& path) {
     level.height = mipmap.levels[l].height;
     for (LafortuneModel& texel :
          LevelFromParamMipmap(mipmap, static_cast<int>(l))) {
-      level.texels.push_back(std::move(texel));
+      level.texels.push_back(PrepareModel<Real>(ModelParams(std::move(texel))));
     }
     m.levels_.push_back(std::move(level));
   }
@@ -63,12 +67,17 @@ Material Material::Load(const std::string& path) {
   return m;
 }
 
-glm::dvec3 Material::Value(const glm::dvec3& wi, const glm::dvec3& wo, double s,
-                           double t, int level, Quantity q) const noexcept {
+template <typename Real>
+typename MaterialT<Real>::Vec MaterialT<Real>::Value(
+    const Vec& wi, const Vec& wo, Real s, Real t, int level,
+    Quantity q) const noexcept {
   const Level& l = levels_[ClampLevel(level)];
   const size_t i = static_cast<size_t>(TexelIndex(t, l.height)) * l.width +
                    TexelIndex(s, l.width);
-  return Evaluate(l.texels[i], wi, wo, q);
+  return EvaluatePrepared(l.texels[i], wi, wo, q);
 }
+
+template class MaterialT<double>;
+template class MaterialT<float>;
 
 }  // namespace clothfit

@@ -1,10 +1,19 @@
 // The stable evaluation API for renderers: load a parameter file
 // or a Lafortune parameter mip map once, then evaluate f or rho for
-// (wi, wo) in a renderer's inner loop.
+// (wi, wo) in a renderer's inner loop, in double (Material) or float
+// (MaterialF).
 //
 //   clothfit::Material m = clothfit::Material::Load("satin.json");
 //   glm::dvec3 f = m.F(wi, wo);               // BRDF, 1/sr
 //   glm::dvec3 rho = m.Rho(wi, wo, s, t, 2);  // mip map: texel (s, t), level 2
+//   clothfit::MaterialF mf = clothfit::MaterialF::Load("satin.json");
+//   glm::vec3 ff = mf.F(glm::vec3(wi), glm::vec3(wo));
+//
+// Loading prepares what depends on the parameters alone (models/prepared.h:
+// a cloth's sample frames, a texel's frame). A float material evaluates the
+// thread, cloth and Lafortune models in float (within 1e-5 of double,
+// relative to the largest channel), the slab and holes in double; its
+// values are finite (saturated at the largest float).
 //
 // Directions are unit vectors in the surface frame (SPEC §1: normal +z,
 // warp/u along +x, weft/v along +y), both pointing away from the surface;
@@ -20,18 +29,21 @@
 #include <vector>
 
 #include "models/evaluate.h"
+#include "models/prepared.h"
 
 namespace clothfit {
 
-class Material {
+// Real: double or float (the two instantiations, Material and MaterialF).
+template <typename Real>
+class MaterialT {
  public:
   // A parameter file of any model (SPEC §4: thread, cloth, lafortune, slab)
   // or, for a path ending in ".exr", a parameter mip map written by
   // `clothfit fit --model lafortune` on a table with s,t columns.
-  static Material Load(const std::string& path);
+  static MaterialT Load(const std::string& path);
   // A parameter set already in memory (e.g. a preset, models/presets.h).
   // Throws InputError when a field is out of range.
-  static Material FromParams(const ModelParams& params);
+  static MaterialT FromParams(const ModelParams& params);
 
   // "thread" | "cloth" | "lafortune" | "slab" | "lafortune_mipmap".
   const std::string& Kind() const { return kind_; }
@@ -43,21 +55,22 @@ class Material {
   // The BRDF f (1/sr, per channel) and the cosine-weighted rho = f wi.z.
   // (s, t) in [0, 1]^2 picks the nearest texel of `level` (both clamped to
   // the valid range); a parameter file ignores them.
-  glm::dvec3 F(const glm::dvec3& wi, const glm::dvec3& wo, double s = 0.0,
-               double t = 0.0, int level = 0) const noexcept {
+  using Vec = glm::vec<3, Real>;
+  Vec F(const Vec& wi, const Vec& wo, Real s = Real(0), Real t = Real(0),
+        int level = 0) const noexcept {
     return Value(wi, wo, s, t, level, Quantity::kBrdf);
   }
-  glm::dvec3 Rho(const glm::dvec3& wi, const glm::dvec3& wo, double s = 0.0,
-                 double t = 0.0, int level = 0) const noexcept {
+  Vec Rho(const Vec& wi, const Vec& wo, Real s = Real(0), Real t = Real(0),
+          int level = 0) const noexcept {
     return Value(wi, wo, s, t, level, Quantity::kCosineWeighted);
   }
 
  private:
-  Material() = default;  // only through Load / FromParams: never empty
+  MaterialT() = default;  // only through Load / FromParams: never empty
 
   struct Level {
     int width = 1, height = 1;
-    std::vector<ModelParams> texels;  // y * width + x
+    std::vector<PreparedModel<Real>> texels;  // y * width + x
   };
 
   // One parameter set, validated once at the boundary (models/evaluate.h
@@ -68,11 +81,16 @@ class Material {
     const int last = static_cast<int>(levels_.size()) - 1;
     return level < 0 ? 0 : (level > last ? last : level);
   }
-  glm::dvec3 Value(const glm::dvec3& wi, const glm::dvec3& wo, double s,
-                   double t, int level, Quantity q) const noexcept;
+  Vec Value(const Vec& wi, const Vec& wo, Real s, Real t, int level,
+            Quantity q) const noexcept;
 
   std::string kind_;
   std::vector<Level> levels_;
 };
+
+extern template class MaterialT<double>;
+extern template class MaterialT<float>;
+using Material = MaterialT<double>;
+using MaterialF = MaterialT<float>;
 
 }  // namespace clothfit

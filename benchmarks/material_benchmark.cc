@@ -35,15 +35,27 @@ ClothParams Satin() {
   return c;
 }
 
-void RunF(benchmark::State& state, const Material& m) {
-  const std::vector<glm::dvec3> dirs = Hemisphere(4096);
+// F of a material at 4096 x 4096 pairs of hemisphere directions, in the
+// material's scalar type (Material: double, MaterialF: float).
+template <typename M>
+void RunF(benchmark::State& state, const M& m) {
+  using Vec = typename M::Vec;
+  std::vector<Vec> dirs;
+  for (const glm::dvec3& d : Hemisphere(4096)) dirs.push_back(Vec(d));
   size_t i = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        m.F(dirs[i & 4095], dirs[(i * 7 + 3) & 4095], 0.3, 0.6, 0));
+        m.F(dirs[i & 4095], dirs[(i * 7 + 3) & 4095], 0.3f, 0.6f, 0));
     ++i;
   }
   state.SetItemsProcessed(state.iterations());
+}
+
+LafortuneModel TwoLobes() {
+  LafortuneModel m;
+  m.params.lobes = {LafortuneLobe(), LafortuneLobe()};
+  m.params.lobes[1].n = glm::dvec3(3.0);
+  return m;
 }
 
 void BM_MaterialF_SatinPreset(benchmark::State& state) {
@@ -51,13 +63,20 @@ void BM_MaterialF_SatinPreset(benchmark::State& state) {
 }
 BENCHMARK(BM_MaterialF_SatinPreset);
 
+void BM_MaterialF_SatinPreset_Float(benchmark::State& state) {
+  RunF(state, MaterialF::FromParams(Satin()));
+}
+BENCHMARK(BM_MaterialF_SatinPreset_Float);
+
 void BM_MaterialF_Lafortune2Lobes(benchmark::State& state) {
-  LafortuneModel m;
-  m.params.lobes = {LafortuneLobe(), LafortuneLobe()};
-  m.params.lobes[1].n = glm::dvec3(3.0);
-  RunF(state, Material::FromParams(m));
+  RunF(state, Material::FromParams(TwoLobes()));
 }
 BENCHMARK(BM_MaterialF_Lafortune2Lobes);
+
+void BM_MaterialF_Lafortune2Lobes_Float(benchmark::State& state) {
+  RunF(state, MaterialF::FromParams(TwoLobes()));
+}
+BENCHMARK(BM_MaterialF_Lafortune2Lobes_Float);
 
 void BM_SampleClothWi_Satin(benchmark::State& state) {
   const ClothParams satin = Satin();

@@ -221,14 +221,15 @@ inline std::string ValidateLafortuneParams(const LafortuneParams& p) {
 }
 
 // [a]^N: a^N for a > 0, else 0 (value and derivatives).
-// For double one pow call; for Jets exp(N log a), whose derivatives are
+// For double and float one pow call; for Jets exp(N log a), whose
+// derivatives are
 // those of a^N (d/da = N a^(N-1), d/dN = a^N log a).
 template <typename T>
 T LobePower(const T& a, const T& n) {
   using std::exp;
   using std::log;
   if (!(a > T(0.0))) return T(0.0);
-  if constexpr (std::is_same_v<T, double>) {
+  if constexpr (std::is_floating_point_v<T>) {
     return std::pow(a, n);
   } else {
     return exp(n * log(a));
@@ -295,9 +296,13 @@ Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
 }
 
 // A texel's local frame: tangent, bi-normal, normal (unit, right-handed).
-struct TexelFrame {
-  glm::dvec3 t{1.0, 0.0, 0.0}, b{0.0, 1.0, 0.0}, n{0.0, 0.0, 1.0};
+template <typename T>
+struct TexelFrameT {
+  Vec3<T> t = Vec3<T>(T(1.0), T(0.0), T(0.0));
+  Vec3<T> b = Vec3<T>(T(0.0), T(1.0), T(0.0));
+  Vec3<T> n = Vec3<T>(T(0.0), T(0.0), T(1.0));
 };
+using TexelFrame = TexelFrameT<double>;
 
 // The frame of a texel with average normal `normal` (Daubert et al. 2001,
 // Section 4): b is perpendicular to the normal and the x axis, t = b x n;
@@ -317,8 +322,9 @@ inline TexelFrame MakeTexelFrame(const glm::dvec3& normal) {
 }
 
 // w (in the surface frame) in the texel's frame.
-inline glm::dvec3 ToTexelFrame(const TexelFrame& f, const glm::dvec3& w) {
-  return glm::dvec3(glm::dot(w, f.t), glm::dot(w, f.b), glm::dot(w, f.n));
+template <typename T>
+Vec3<T> ToTexelFrame(const TexelFrameT<T>& f, const Vec3<T>& w) {
+  return Vec3<T>(glm::dot(w, f.t), glm::dot(w, f.b), glm::dot(w, f.n));
 }
 
 // The per-view lookup table T(v): stored views (unit vectors in the local
@@ -395,12 +401,23 @@ struct LafortuneModel {
 // surface frame and l', v' in the texel's frame; zero unless l.z > 0 and
 // v.z > 0. The lookup table is indexed by the measured (surface-frame)
 // view.
+// LafortuneRhoInFrame takes the texel's frame made once (MakeTexelFrame of
+// the normal) and evaluates in any floating-point type (the table's
+// lookup in double).
+template <typename T>
+Vec3<T> LafortuneRhoInFrame(const LafortuneParamsT<T>& p,
+                            const TexelFrameT<T>& frame, const ViewTable& lut,
+                            const Vec3<T>& l, const Vec3<T>& v) {
+  if (!(l.z > T(0.0) && v.z > T(0.0))) return Vec3<T>(T(0.0));
+  const Vec3<T> f1 =
+      LafortuneF1(p, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
+  if (lut.views.empty()) return f1;  // T(v) = 1
+  return Vec3<T>(LookupView(lut, glm::dvec3(v)).color) * f1;
+}
+
 inline glm::dvec3 LafortuneRho(const LafortuneModel& m, const glm::dvec3& l,
                                const glm::dvec3& v) {
-  if (!(l.z > 0.0 && v.z > 0.0)) return glm::dvec3(0.0);
-  const TexelFrame frame = MakeTexelFrame(m.normal);
-  return LookupView(m.lut, v).color *
-         LafortuneF1(m.params, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
+  return LafortuneRhoInFrame(m.params, MakeTexelFrame(m.normal), m.lut, l, v);
 }
 
 template <>

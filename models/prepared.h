@@ -1,0 +1,209 @@
+// A parameter set made ready for a renderer's inner loop (api/material.h):
+// what depends on the parameters alone is computed once per material, and
+// the values are evaluated in the renderer's scalar type R (float or
+// double) through the same model code as every other caller.
+//
+// - cloth: the tangent t and local normal n of every sample
+//   (MakeTangentFrame: two sine/cosine pairs per sample and evaluation);
+// - Lafortune: the texel's frame (MakeTexelFrame of its normal);
+// - thread: its parameters in R;
+// - slab and holes: evaluated in double and rounded to R (their
+//   series and limits are written for double).
+// A float material whose values can leave float's range (a Lafortune file's
+// lobe may peak at 1e100) is evaluated in double too; every float result
+// is rounded with saturation at the largest float, so it stays finite.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "models/evaluate.h"
+
+namespace clothfit {
+
+namespace prepared_internal {
+
+// The flat entries (models/params.h ToArray) of `from` into `to`, of
+// another scalar type.
+template <typename From, typename To>
+void CastFlat(const From& from, To* to) {
+  std::vector<double> x(FlatSize(from));
+  ToArray(from, x.data());
+  using R = std::remove_reference_t<decltype(to->albedo.x)>;
+  std::vector<R> y(x.begin(), x.end());
+  FromArray(y.data(), to);
+}
+
+template <typename R>
+ThreadParamsT<R> CastThread(const ThreadParams& p) {
+  ThreadParamsT<R> out;
+  CastFlat(p, &out);
+  out.scale = R(p.scale);
+  return out;
+}
+
+template <typename R>
+Vec3<R> CastVec(const glm::dvec3& v) {
+  return Vec3<R>(R(v.x), R(v.y), R(v.z));
+}
+
+}  // namespace prepared_internal
+
+// A cloth with its sample frames (the Frames of ClothRhoWithFrames).
+template <typename R>
+struct PreparedCloth {
+  ClothParamsT<R> cloth;
+  std::vector<std::vector<TangentFrame<R>>> frames;  // [thread][sample]
+
+  int Count(size_t j) const { return static_cast<int>(frames[j].size()); }
+  const TangentFrame<R>& Get(size_t j, int k) const { return frames[j][k]; }
+};
+
+template <typename R>
+PreparedCloth<R> PrepareCloth(const ClothParams& c) {
+  PreparedCloth<R> out;
+  out.cloth.rotation_deg = R(c.rotation_deg);
+  out.cloth.diffuse = prepared_internal::CastVec<R>(c.diffuse);
+  out.cloth.scale = R(c.scale);
+  for (const ClothThread& th : c.threads) {
+    ClothThreadT<R> t;
+    t.direction = th.direction;
+    t.coverage = R(th.coverage);
+    t.offsets_deg.assign(th.offsets_deg.begin(), th.offsets_deg.end());
+    t.curve = th.curve;
+    t.params = prepared_internal::CastThread<R>(th.params);
+    out.cloth.threads.push_back(t);
+    // The frames from the double parameters, then rounded: the same frames
+    // as a double evaluation, to R's precision.
+    std::vector<TangentFrame<R>> frames;
+    for (double offset : th.offsets_deg) {
+      const TangentFrame<double> f =
+          MakeTangentFrame(th.direction, c.rotation_deg, offset);
+      frames.push_back({prepared_internal::CastVec<R>(f.t),
+                        prepared_internal::CastVec<R>(f.n)});
+    }
+    out.frames.push_back(std::move(frames));
+  }
+  return out;
+}
+
+// A Lafortune texel with its frame.
+template <typename R>
+struct PreparedLafortune {
+  LafortuneParamsT<R> params;
+  TexelFrameT<R> frame;
+  ViewTable lut;
+};
+
+template <typename R>
+PreparedLafortune<R> PrepareLafortune(const LafortuneModel& m) {
+  PreparedLafortune<R> out;
+  out.params.diffuse = prepared_internal::CastVec<R>(m.params.diffuse);
+  for (const LafortuneLobe& lobe : m.params.lobes) {
+    LafortuneLobeT<R> l;
+    l.cx = prepared_internal::CastVec<R>(lobe.cx);
+    l.cy = prepared_internal::CastVec<R>(lobe.cy);
+    l.cz = prepared_internal::CastVec<R>(lobe.cz);
+    l.n = prepared_internal::CastVec<R>(lobe.n);
+    out.params.lobes.push_back(l);
+  }
+  const TexelFrame f = MakeTexelFrame(m.normal);
+  out.frame.t = prepared_internal::CastVec<R>(f.t);
+  out.frame.b = prepared_internal::CastVec<R>(f.b);
+  out.frame.n = prepared_internal::CastVec<R>(f.n);
+  out.lut = m.lut;
+  return out;
+}
+
+// Whether a Lafortune texel's values stay well inside float's range: every
+// |C| and rho_d below 1e30 and every lobe's peak max|C|^N below 1e30.
+inline bool LafortuneFitsFloat(const LafortuneModel& m) {
+  constexpr double kLimit = 1e30;
+  for (int c = 0; c < 3; ++c) {
+    if (!(m.params.diffuse[c] < kLimit)) return false;
+    for (const LafortuneLobe& lobe : m.params.lobes) {
+      const double reach = std::max(
+          {std::abs(lobe.cx[c]), std::abs(lobe.cy[c]), std::abs(lobe.cz[c])});
+      if (!(reach < kLimit)) return false;
+      if (reach > 1.0 && !(lobe.n[c] * std::log10(reach) < 30.0)) return false;
+    }
+  }
+  return true;
+}
+
+// A parameter set prepared for scalar type R: one of the prepared forms
+// above, or the double parameters themselves (slab, holes, and float
+// materials beyond float's range).
+template <typename R>
+using PreparedModel = std::variant<ThreadParamsT<R>, PreparedCloth<R>,
+                                   PreparedLafortune<R>, ModelParams>;
+
+template <typename R>
+PreparedModel<R> PrepareModel(const ModelParams& params) {
+  if (const auto* t = std::get_if<ThreadParams>(&params)) {
+    return prepared_internal::CastThread<R>(*t);
+  }
+  if (const auto* c = std::get_if<ClothParams>(&params)) {
+    return PrepareCloth<R>(*c);
+  }
+  if (const auto* m = std::get_if<LafortuneModel>(&params)) {
+    if (std::is_same_v<R, double> || LafortuneFitsFloat(*m)) {
+      return PrepareLafortune<R>(*m);
+    }
+  }
+  return params;
+}
+
+template <typename R>
+inline constexpr ModelInfo kModelInfo<PreparedCloth<R>> =
+    kModelInfo<ClothParams>;
+template <typename R>
+inline constexpr ModelInfo kModelInfo<PreparedLafortune<R>> =
+    kModelInfo<LafortuneModel>;
+
+template <typename R>
+Vec3<R> NativeValue(const PreparedCloth<R>& p, const Vec3<R>& wi,
+                    const Vec3<R>& wo) {
+  return ClothRhoWithFrames(p.cloth, p, wi, wo) * p.cloth.scale;
+}
+
+template <typename R>
+Vec3<R> NativeValue(const PreparedLafortune<R>& p, const Vec3<R>& wi,
+                    const Vec3<R>& wo) {
+  return LafortuneRhoInFrame(p.params, p.frame, p.lut, wi, wo);
+}
+
+// A double value as R, saturated at R's largest finite value.
+template <typename R>
+Vec3<R> RoundToScalar(const glm::dvec3& v) {
+  constexpr double kMax = static_cast<double>(std::numeric_limits<R>::max());
+  Vec3<R> out;
+  for (int c = 0; c < 3; ++c) out[c] = R(Clamp(v[c], -kMax, kMax));
+  return out;
+}
+
+// The value of a prepared model as quantity q (models/evaluate.h Value).
+template <typename R>
+Vec3<R> EvaluatePrepared(const PreparedModel<R>& model, const Vec3<R>& wi,
+                         const Vec3<R>& wo, Quantity q) {
+  return std::visit(
+      [&](const auto& p) -> Vec3<R> {
+        using P = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<P, ModelParams>) {
+          const glm::dvec3 v = Evaluate(p, glm::dvec3(wi), glm::dvec3(wo), q);
+          if constexpr (std::is_same_v<R, double>) {
+            return v;
+          } else {
+            return RoundToScalar<R>(v);
+          }
+        } else {
+          return Value(p, wi, wo, q);
+        }
+      },
+      model);
+}
+
+}  // namespace clothfit
