@@ -176,10 +176,11 @@ Vec3<R> NativeValue(const PreparedLafortune<R>& p, const Vec3<R>& wi,
   return LafortuneRhoInFrame(p.params, p.frame, p.lut, wi, wo);
 }
 
-// A double value as R, saturated at R's largest finite value.
-template <typename R>
-Vec3<R> RoundToScalar(const glm::dvec3& v) {
-  constexpr double kMax = static_cast<double>(std::numeric_limits<R>::max());
+// A value as R, saturated at R's largest finite value (a float
+// evaluation of extreme parameters may overflow where double does not).
+template <typename R, typename V>
+Vec3<R> Saturate(const glm::vec<3, V>& v) {
+  constexpr V kMax = static_cast<V>(std::numeric_limits<R>::max());
   Vec3<R> out;
   for (int c = 0; c < 3; ++c) out[c] = R(Clamp(v[c], -kMax, kMax));
   return out;
@@ -197,10 +198,12 @@ Vec3<R> EvaluatePrepared(const PreparedModel<R>& model, const Vec3<R>& wi,
           if constexpr (std::is_same_v<R, double>) {
             return v;
           } else {
-            return RoundToScalar<R>(v);
+            return Saturate<R>(v);
           }
-        } else {
+        } else if constexpr (std::is_same_v<R, double>) {
           return Value(p, wi, wo, q);
+        } else {
+          return Saturate<R>(Value(p, wi, wo, q));
         }
       },
       model);
