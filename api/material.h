@@ -12,8 +12,9 @@
 // Loading prepares what depends on the parameters alone (models/prepared.h:
 // a cloth's sample frames, a texel's frame). A float material evaluates the
 // thread, cloth and Lafortune models in float (within 1e-5 of double,
-// relative to the largest channel), the slab and holes in double; its
-// values are finite (saturated at the largest float).
+// relative to the larger of the value and a thousandth of the material's
+// peak: docs/renderer.md), the slab and holes in double; its values are
+// finite (saturated at the largest float).
 //
 // Directions are unit vectors in the surface frame (SPEC §1: normal +z,
 // warp/u along +x, weft/v along +y), both pointing away from the surface;
