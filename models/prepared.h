@@ -28,11 +28,10 @@ namespace prepared_internal {
 
 // The flat entries (models/params.h ToArray) of `from` into `to`, of
 // another scalar type.
-template <typename From, typename To>
+template <typename R, typename From, typename To>
 void CastFlat(const From& from, To* to) {
   std::vector<double> x(FlatSize(from));
   ToArray(from, x.data());
-  using R = std::remove_reference_t<decltype(to->albedo.x)>;
   std::vector<R> y(x.begin(), x.end());
   FromArray(y.data(), to);
 }
@@ -40,14 +39,9 @@ void CastFlat(const From& from, To* to) {
 template <typename R>
 ThreadParamsT<R> CastThread(const ThreadParams& p) {
   ThreadParamsT<R> out;
-  CastFlat(p, &out);
+  CastFlat<R>(p, &out);
   out.scale = R(p.scale);
   return out;
-}
-
-template <typename R>
-Vec3<R> CastVec(const glm::dvec3& v) {
-  return Vec3<R>(R(v.x), R(v.y), R(v.z));
 }
 
 }  // namespace prepared_internal
@@ -66,7 +60,7 @@ template <typename R>
 PreparedCloth<R> PrepareCloth(const ClothParams& c) {
   PreparedCloth<R> out;
   out.cloth.rotation_deg = R(c.rotation_deg);
-  out.cloth.diffuse = prepared_internal::CastVec<R>(c.diffuse);
+  out.cloth.diffuse = Cast<R>(c.diffuse);
   out.cloth.scale = R(c.scale);
   for (const ClothThread& th : c.threads) {
     ClothThreadT<R> t;
@@ -82,8 +76,7 @@ PreparedCloth<R> PrepareCloth(const ClothParams& c) {
     for (double offset : th.offsets_deg) {
       const TangentFrame<double> f =
           MakeTangentFrame(th.direction, c.rotation_deg, offset);
-      frames.push_back({prepared_internal::CastVec<R>(f.t),
-                        prepared_internal::CastVec<R>(f.n)});
+      frames.push_back({Cast<R>(f.t), Cast<R>(f.n)});
     }
     out.frames.push_back(std::move(frames));
   }
@@ -101,19 +94,16 @@ struct PreparedLafortune {
 template <typename R>
 PreparedLafortune<R> PrepareLafortune(const LafortuneModel& m) {
   PreparedLafortune<R> out;
-  out.params.diffuse = prepared_internal::CastVec<R>(m.params.diffuse);
+  out.params.diffuse = Cast<R>(m.params.diffuse);
   for (const LafortuneLobe& lobe : m.params.lobes) {
     LafortuneLobeT<R> l;
-    l.cx = prepared_internal::CastVec<R>(lobe.cx);
-    l.cy = prepared_internal::CastVec<R>(lobe.cy);
-    l.cz = prepared_internal::CastVec<R>(lobe.cz);
-    l.n = prepared_internal::CastVec<R>(lobe.n);
+    prepared_internal::CastFlat<R>(lobe, &l);
     out.params.lobes.push_back(l);
   }
   const TexelFrame f = MakeTexelFrame(m.normal);
-  out.frame.t = prepared_internal::CastVec<R>(f.t);
-  out.frame.b = prepared_internal::CastVec<R>(f.b);
-  out.frame.n = prepared_internal::CastVec<R>(f.n);
+  out.frame.t = Cast<R>(f.t);
+  out.frame.b = Cast<R>(f.b);
+  out.frame.n = Cast<R>(f.n);
   out.lut = m.lut;
   return out;
 }
