@@ -1,13 +1,15 @@
 // The stable evaluation API for renderers: load a parameter file
 // or a Lafortune parameter mip map once, then evaluate f or rho for
 // (wi, wo) in a renderer's inner loop, in double (Material) or float
-// (MaterialF).
+// (MaterialF), and sample wi given wo for a path tracer.
 //
 //   clothfit::Material m = clothfit::Material::Load("satin.json");
 //   glm::dvec3 f = m.F(wi, wo);               // BRDF, 1/sr
 //   glm::dvec3 rho = m.Rho(wi, wo, s, t, 2);  // mip map: texel (s, t), level 2
 //   clothfit::MaterialF mf = clothfit::MaterialF::Load("satin.json");
 //   glm::vec3 ff = mf.F(glm::vec3(wi), glm::vec3(wo));
+//   clothfit::BsdfSampleT<double> b = m.Sample(wo, u1, u2);  // b.wi, b.pdf,
+//   // b.weight = f |wi.z| / pdf; m.Pdf(wo, wi) for MIS
 //
 // Loading prepares what depends on the parameters alone (models/prepared.h:
 // a cloth's sample frames, a texel's frame). A float material evaluates the
@@ -34,14 +36,40 @@
 
 namespace clothfit {
 
+// How a texture map (a Lafortune parameter mip map) is looked up at
+// (s, t) and level `lod`: the texel nearest to (s, t) on the level nearest
+// to lod; bilinear interpolation of the 4 texels around (s, t) on that
+// level (texel centres at (x + 0.5) / width; clamped at the edges); or
+// trilinear: bilinear on levels floor(lod) and floor(lod) + 1, then linear
+// between them. Interpolation blends the texels' values (f, rho, pdf):
+// their parameters are not interpolated.
+enum class TexelFilter { kNearest, kBilinear, kTrilinear };
+
+// A direction sampled for a path tracer (MaterialT::Sample).
+template <typename Real>
+struct BsdfSampleT {
+  glm::vec<3, Real> wi{Real(0), Real(0), Real(1)};  // unit
+  // Per steradian (= Pdf(wo, wi)); for a delta sample, the probability of
+  // having chosen it.
+  Real pdf = Real(0);
+  // rho(wi, wo) / pdf = f |wi.z| / pdf per channel (a delta sample: its
+  // direct transmittance / pdf); 0 where pdf is 0. Finite.
+  glm::vec<3, Real> weight{Real(0), Real(0), Real(0)};
+  // Direct transmission (slab, holes): wi = -wo exactly, a direction F and
+  // Pdf do not describe (multiple importance sampling must skip it).
+  bool delta = false;
+};
+
 // Real: double or float (the two instantiations, Material and MaterialF).
 template <typename Real>
 class MaterialT {
  public:
   // A parameter file of any model (SPEC §4: thread, cloth, lafortune, slab)
   // or, for a path ending in ".exr", a parameter mip map written by
-  // `clothfit fit --model lafortune` on a table with s,t columns.
-  static MaterialT Load(const std::string& path);
+  // `clothfit fit --model lafortune` on a table with s,t columns, looked
+  // up with `filter`.
+  static MaterialT Load(const std::string& path,
+                        TexelFilter filter = TexelFilter::kNearest);
   // A parameter set already in memory (e.g. a preset, models/presets.h).
   // Throws InputError when a field is out of range.
   static MaterialT FromParams(const ModelParams& params);
@@ -53,18 +81,32 @@ class MaterialT {
   int Width(int level) const { return levels_[ClampLevel(level)].width; }
   int Height(int level) const { return levels_[ClampLevel(level)].height; }
 
-  // The BRDF f (1/sr, per channel) and the cosine-weighted rho = f wi.z.
-  // (s, t) in [0, 1]^2 picks the nearest texel of `level` (both clamped to
-  // the valid range); a parameter file ignores them.
+  // The BRDF f (1/sr, per channel) and the cosine-weighted rho = f |wi.z|.
+  // (s, t) in [0, 1]^2 and the mip level `lod` (0 the finest) pick texels
+  // by the material's TexelFilter (all clamped to the valid range); a
+  // parameter file ignores them.
   using Vec = glm::vec<3, Real>;
   Vec F(const Vec& wi, const Vec& wo, Real s = Real(0), Real t = Real(0),
-        int level = 0) const noexcept {
-    return Value(wi, wo, s, t, level, Quantity::kBrdf);
+        Real lod = Real(0)) const noexcept {
+    return Value(wi, wo, s, t, lod, Quantity::kBrdf);
   }
   Vec Rho(const Vec& wi, const Vec& wo, Real s = Real(0), Real t = Real(0),
-          int level = 0) const noexcept {
-    return Value(wi, wo, s, t, level, Quantity::kCosineWeighted);
+          Real lod = Real(0)) const noexcept {
+    return Value(wi, wo, s, t, lod, Quantity::kCosineWeighted);
   }
+
+  // Importance sampling (models/model_sampling.h): wi given wo from two
+  // uniform numbers in [0, 1), at the texels F uses. Every model samples
+  // the side(s) its F covers (cloth and Lafortune reflect, a thread
+  // scatters to both sides, a slab reflects and transmits).
+  BsdfSampleT<Real> Sample(const Vec& wo, Real u1, Real u2, Real s = Real(0),
+                           Real t = Real(0), Real lod = Real(0)) const noexcept;
+  // The density per steradian with which Sample returns wi (its
+  // continuous part: over the sphere it integrates to 1 minus the
+  // probability of a delta sample).
+  Real Pdf(const Vec& wo, const Vec& wi, Real s = Real(0), Real t = Real(0),
+           Real lod = Real(0)) const noexcept;
+  TexelFilter Filter() const { return filter_; }
 
  private:
   MaterialT() = default;  // only through Load / FromParams: never empty
@@ -82,10 +124,21 @@ class MaterialT {
     const int last = static_cast<int>(levels_.size()) - 1;
     return level < 0 ? 0 : (level > last ? last : level);
   }
-  Vec Value(const Vec& wi, const Vec& wo, Real s, Real t, int level,
+  // The texels a lookup at (s, t, lod) blends and their weights (summing
+  // to 1): up to 8 (trilinear).
+  struct Taps {
+    int count = 0;
+    const PreparedModel<Real>* texel[8];
+    Real weight[8];
+  };
+  Taps Lookup(Real s, Real t, Real lod) const noexcept;
+  void AddLevel(int level, Real s, Real t, Real weight,
+                Taps* taps) const noexcept;
+  Vec Value(const Vec& wi, const Vec& wo, Real s, Real t, Real lod,
             Quantity q) const noexcept;
 
   std::string kind_;
+  TexelFilter filter_ = TexelFilter::kNearest;
   std::vector<Level> levels_;
 };
 

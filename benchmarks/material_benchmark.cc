@@ -84,7 +84,7 @@ void BM_SampleClothWi_Satin(benchmark::State& state) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(SampleClothWi(satin, wo, u(rng), u(rng), u(rng)));
+    benchmark::DoNotOptimize(SampleClothWi(satin, wo, u(rng), u(rng)));
   }
   state.SetItemsProcessed(state.iterations());
 }

@@ -12,14 +12,12 @@
 
 #include "api/material.h"
 #include "models/presets.h"
+#include "tests/direction_util.h"
 
 namespace clothfit {
 namespace {
 
-glm::dvec3 Dir(double theta_deg, double phi_deg) {
-  const double t = Radians(theta_deg), p = Radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
+using testing_util::Dir;
 
 // Pairs over the hemisphere: thetas up to 89.9 degrees, azimuths all
 // round, so that every masking and lobe branch of the cloth is taken.

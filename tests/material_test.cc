@@ -16,6 +16,7 @@
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "models/presets.h"
+#include "tests/direction_util.h"
 #include "tests/io_test_util.h"
 
 // Counts every allocation of the test program (global operator new).
@@ -38,14 +39,10 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace clothfit {
 namespace {
 
+using testing_util::Dir;
 using testing_util::ErrorOf;
 using testing_util::ExpectHas;
 using testing_util::FreshTestDir;
-
-glm::dvec3 Dir(double theta_deg, double phi_deg) {
-  const double t = Radians(theta_deg), p = Radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
 
 const std::vector<std::pair<glm::dvec3, glm::dvec3>>& Pairs() {
   static const std::vector<std::pair<glm::dvec3, glm::dvec3>> kPairs = {
@@ -197,6 +194,43 @@ TEST(Material, MipmapPicksTheNearestTexelOfTheLevel) {
   }
 }
 
+// Bilinear: texel centres at (x + 0.5) / 2, clamped at the edges;
+// trilinear: bilinear on two levels, blended by the fraction of lod; the
+// level itself is the nearest one otherwise.
+TEST(Material, MipmapFiltersBilinearlyAndTrilinearly) {
+  const auto dir = FreshTestDir("material_");
+  const std::string path = (dir / "diffuse.exr").string();
+  WriteParamMipmap(ToParamMipmap(DiffuseMip()), path);
+  const Material bilinear = Material::Load(path, TexelFilter::kBilinear);
+  const Material trilinear = Material::Load(path, TexelFilter::kTrilinear);
+  const Material nearest = Material::Load(path);
+  EXPECT_EQ(bilinear.Filter(), TexelFilter::kBilinear);
+  const glm::dvec3 wi = Dir(40, 30), wo = Dir(10, 200);
+  struct Case {
+    const Material* m;
+    double s, t, lod, diffuse_r;
+  };
+  for (const Case& c :
+       {Case{&bilinear, 0.25, 0.25, 0, 0.1},
+        Case{&bilinear, 0.75, 0.75, 0, 0.4},
+        Case{&bilinear, 0.5, 0.25, 0, 0.15}, Case{&bilinear, 0.25, 0.5, 0, 0.2},
+        Case{&bilinear, 0.5, 0.5, 0, 0.25},
+        Case{&bilinear, 0.375, 0.25, 0, 0.125},
+        Case{&bilinear, 0.0, 0.0, 0, 0.1}, Case{&bilinear, 1.0, -2.0, 0, 0.2},
+        Case{&bilinear, 0.5, 0.25, 0.4, 0.15},
+        Case{&bilinear, 0.5, 0.25, 0.6, 0.25},
+        Case{&trilinear, 0.5, 0.25, 0.5, 0.2},
+        Case{&trilinear, 0.5, 0.25, 0.25, 0.175},
+        Case{&trilinear, 0.5, 0.25, 1.7, 0.25},
+        Case{&trilinear, 0.5, 0.25, -1.0, 0.15},
+        Case{&nearest, 0.9, 0.9, 0.4, 0.4},
+        Case{&nearest, 0.9, 0.9, 0.6, 0.25}}) {
+    EXPECT_NEAR(c.m->F(wi, wo, c.s, c.t, c.lod).x, c.diffuse_r, 1e-7)
+        << c.s << "," << c.t << " lod " << c.lod;
+    EXPECT_NEAR(c.m->Rho(wi, wo, c.s, c.t, c.lod).x, c.diffuse_r * wi.z, 1e-7);
+  }
+}
+
 TEST(Material, LevelReaderMatchesTheTexelReaderAndNamesMissingChannels) {
   LafortuneMipResult r = DiffuseMip();
   r.views = {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(1, 0, 1))};
@@ -252,12 +286,14 @@ TEST(Material, LoadErrorsNameTheFileAndTheProblem) {
   ExpectHas(ErrorOf([&] { Material::FromParams(bad); }), {"eta"});
 }
 
+// Evaluation and sampling, filtered too.
 TEST(Material, EvaluationDoesNotAllocate) {
   const auto dir = FreshTestDir("material_");
   const std::string path = (dir / "diffuse.exr").string();
   WriteParamMipmap(ToParamMipmap(DiffuseMip()), path);
   const long load_start = g_allocations.load();
-  std::vector<Material> materials = {Material::Load(path)};
+  std::vector<Material> materials = {
+      Material::Load(path), Material::Load(path, TexelFilter::kTrilinear)};
   EXPECT_GT(g_allocations.load() - load_start, 0);  // the counter counts
   for (const ModelParams& p : EveryModel()) {
     materials.push_back(Material::FromParams(p));
@@ -268,6 +304,8 @@ TEST(Material, EvaluationDoesNotAllocate) {
   for (const Material& m : materials) {
     for (const auto& [wi, wo] : pairs) {
       sum += m.F(wi, wo, 0.7, 0.2, 0) + m.Rho(wi, wo, 0.3, 0.6, 1);
+      const BsdfSampleT<double> b = m.Sample(wo, 0.3, 0.7, 0.4, 0.5, 0.5);
+      sum += b.weight * m.Pdf(wo, wi, 0.4, 0.5, 0.5);
     }
   }
   EXPECT_EQ(g_allocations.load() - before, 0);

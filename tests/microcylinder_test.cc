@@ -9,20 +9,13 @@
 #include "models/evaluate.h"
 #include "models/presets.h"
 #include "tests/conformance_util.h"
+#include "tests/direction_util.h"
 
 namespace clothfit {
 namespace {
 
-glm::dvec3 Dir(double theta_deg, double phi_deg) {
-  const double t = Radians(theta_deg), p = Radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
-
-ClothParams Preset(const std::string& name) {
-  ClothParams c;
-  EXPECT_TRUE(GetPreset(name, &c)) << name;
-  return c;
-}
+using testing_util::Dir;
+using testing_util::Preset;
 
 // Every row of the independent implementation's output (SPEC §3.2).
 TEST(MicrocylinderConformance, MatchesIndependentImplementation) {

@@ -10,9 +10,12 @@
 
 #include "models/evaluate.h"
 #include "models/slab.h"
+#include "tests/direction_util.h"
 
 namespace clothfit {
 namespace {
+
+using testing_util::Dir;
 
 constexpr double kC = 1.0 / (4.0 * kPi);  // the phase function's A / (4 pi)
 
@@ -25,11 +28,6 @@ SlabParams Slab(const glm::dvec3& tau, const glm::dvec3& albedo) {
 
 SlabParams Slab(double tau, const glm::dvec3& albedo) {
   return Slab(glm::dvec3(tau), albedo);
-}
-
-glm::dvec3 Dir(double theta_deg, double phi_deg) {
-  const double t = Radians(theta_deg), p = Radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
 void ExpectRel(double actual, double expected, double tolerance,

@@ -37,6 +37,11 @@ void CheckFile(const std::string& path) {
                              12.305400904555322, l, v),
              1e-12),
         "fitted file, channel R");
+  // A sampled direction: its pdf is Pdf there and its weight rho / pdf.
+  const clothfit::BsdfSampleT<double> b = m.Sample(v, 0.3, 0.6);
+  Check(b.pdf > 0.0 && Near(b.pdf, m.Pdf(v, b.wi), 1e-12 * b.pdf) &&
+            Near(b.weight.x, m.Rho(b.wi, v).x / b.pdf, 1e-12 * b.weight.x),
+        "sample of " + path);
 }
 
 // A 2 x 2 map of diffuse texels over a 1 x 1 level; the renderer reads the
@@ -61,6 +66,10 @@ void CheckMipmap(const std::string& dir) {
   Check(Near(m.Rho(wi, wo, 0.75, 0.25, 0).x, 0.2 * 0.8, 1e-7), "texel (1, 0)");
   Check(Near(m.F(wi, wo, 0.25, 0.75, 0).x, 0.3, 1e-7), "texel (0, 1), F");
   Check(Near(m.F(wi, wo, 0.25, 0.75, 1).x, 0.7, 1e-7), "level 1");
+  // Bilinear between the four texels: red (0.1 + 0.2 + 0.3 + 0.4) / 4.
+  const clothfit::Material b =
+      clothfit::Material::Load(path, clothfit::TexelFilter::kBilinear);
+  Check(Near(b.F(wi, wo, 0.5, 0.5, 0).x, 0.25, 1e-7), "bilinear");
 }
 
 }  // namespace

@@ -1,0 +1,30 @@
+// Directions and presets as the model tests write them.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "models/math.h"
+#include "models/presets.h"
+
+namespace clothfit {
+namespace testing_util {
+
+// The unit vector at polar angle theta and azimuth phi (degrees) in the
+// surface frame (SPEC §1).
+inline glm::dvec3 Dir(double theta_deg, double phi_deg) {
+  const double t = Radians(theta_deg), p = Radians(phi_deg);
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+// A cloth preset by name (a test failure when there is none).
+inline ClothParams Preset(const std::string& name) {
+  ClothParams c;
+  EXPECT_TRUE(GetPreset(name, &c)) << name;
+  return c;
+}
+
+}  // namespace testing_util
+}  // namespace clothfit
