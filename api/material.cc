@@ -69,6 +69,17 @@ MaterialT<Real> MaterialT<Real>::Load(const std::string& path,
                                       TexelFilter filter) {
   if (!text_util::HasExtension(path, ".exr")) {
     const ParamFile file = ReadParamFile(path);
+    const auto* holes = std::get_if<HolesModel>(&file.params);
+    if (holes != nullptr && !holes->tile) {
+      throw InputError(
+          path + ": a holes model needs its mask's tile (key 'tile')" +
+          (file.holes.path.empty()
+               ? std::string()
+               : "; the file names its mask '" + file.holes.path +
+                     "', an image, which the renderer API does not read") +
+          ": add the tile with 'clothfit holes tile --params " + path +
+          " --out FILE'");
+    }
     MaterialT m;
     m.kind_ = ModelName(file.params);
     m.levels_.push_back(OneTexel(file.params, path));

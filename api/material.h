@@ -25,7 +25,9 @@
 // problem. Evaluation never throws, never allocates, and only reads the
 // loaded data, so any number of threads may evaluate one Material at once.
 // For a slab, f is the reflection or transmission BSDF (wi and wo on
-// opposite sides: transmission).
+// opposite sides: transmission); its direct transmission, and all of a
+// holes layer's (which has no BSDF: F is 0), is what Sample returns as a
+// delta sample (BsdfSampleT::delta).
 #pragma once
 
 #include <string>
@@ -64,8 +66,10 @@ struct BsdfSampleT {
 template <typename Real>
 class MaterialT {
  public:
-  // A parameter file of any model (SPEC §4: thread, cloth, lafortune, slab)
-  // or, for a path ending in ".exr", a parameter mip map written by
+  // A parameter file of any model (SPEC §4: thread, cloth, lafortune, slab;
+  // holes when the file holds its mask's tile, as `clothfit fit --model
+  // holes` and `clothfit holes tile` write it) or, for a path ending in
+  // ".exr", a parameter mip map written by
   // `clothfit fit --model lafortune` on a table with s,t columns, looked
   // up with `filter`.
   static MaterialT Load(const std::string& path,
@@ -74,7 +78,8 @@ class MaterialT {
   // Throws InputError when a field is out of range.
   static MaterialT FromParams(const ModelParams& params);
 
-  // "thread" | "cloth" | "lafortune" | "slab" | "lafortune_mipmap".
+  // "thread" | "cloth" | "lafortune" | "slab" | "holes" |
+  // "lafortune_mipmap".
   const std::string& Kind() const { return kind_; }
   // Mip levels (1 for a parameter file) and the size of a level.
   int Levels() const { return static_cast<int>(levels_.size()); }

@@ -42,7 +42,8 @@ ParamFile LoadModelOption(const CommandArgs& args,
 ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,
                              const std::string& source) {
   ParamFile file = LoadModelOption(args);
-  if (std::holds_alternative<HolesModel>(file.params)) {
+  if (std::holds_alternative<HolesModel>(file.params) &&
+      !std::get<HolesModel>(file.params).tile) {
     // Its mask, as the file names it (relative to the file's folder).
 #ifdef CLOTHFIT_LIGHT
     RunInFullBinary();  // the mask is an image

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/holes_options.h"
 #include "bench/hole_charts.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
@@ -26,41 +27,16 @@ namespace clothfit {
 namespace {
 
 constexpr char kHolesUsage[] =
-    "usage: clothfit holes analyze|eval|truth [options]   (clothfit holes "
+    "usage: clothfit holes analyze|eval|truth|tile [options]   (clothfit holes "
     "CMD --help)\n\n"
     "  analyze   counts of walls, triangles and opaque texels of a mask, "
     "their mip pyramid as OpenEXR\n"
     "  eval      transmittance of a mask with thickness (Algorithm 3.1 or "
     "the extension); charts\n"
     "  truth     ground-truth transmittance by ray traversal of the texel "
-    "grid\n";
-
-void AddMaskOptions(CommandArgs* args) {
-  args->Option("mask", "M.png",
-               "mask image: alpha >= T is opaque, else luminance < T");
-  args->Option("threshold", "T", "mask threshold, (0, 1]", "0.5");
-  args->Option("source", "S", "mask channel: auto, alpha or luminance", "auto");
-  args->Flag("invert", "swap the mask's opaque and transparent texels");
-}
-
-Mask LoadMask(const CommandArgs& args) {
-  MaskReadOptions options;
-  options.threshold = args.GetDouble("threshold");
-  if (!(options.threshold > 0.0 && options.threshold <= 1.0)) {
-    args.Fail("option '--threshold': must be in (0, 1]");
-  }
-  const std::string source = args.Get("source");
-  if (source == "alpha") {
-    options.source = MaskSource::kAlpha;
-  } else if (source == "luminance") {
-    options.source = MaskSource::kLuminance;
-  } else if (source != "auto") {
-    args.Fail("option '--source': expected auto, alpha or luminance, got '" +
-              source + "'");
-  }
-  options.invert = args.Has("invert");
-  return ReadMask(args.Required("mask"), options);
-}
+    "grid\n"
+    "  tile      a holes parameter file with its mask's tile, which "
+    "renderers load without the mask\n";
 
 // The model and the directions it is evaluated at (eval, truth).
 void AddModelOptions(CommandArgs* args) {
@@ -71,35 +47,6 @@ void AddModelOptions(CommandArgs* args) {
   args->Option("params", "P.json", "a holes parameter file instead");
   args->Option("dirs", "D.csv", "view directions (a table)");
   args->Option("out", "O.csv", "transmittance table");
-}
-
-// How the ratios are computed (eval, fit).
-void AddMethodOptions(CommandArgs* args) {
-  args->Option("method", "M", "alg31 or extension", "extension");
-  args->Option("level", "L",
-               "pyramid level evaluated and averaged over the tile: top (1 x "
-               "1) or 0..",
-               "top");
-}
-
-HoleMethod MethodOption(const CommandArgs& args) {
-  const std::optional<HoleMethod> method = ParseHoleMethod(args.Get("method"));
-  if (!method) {
-    args.Fail("option '--method': expected alg31 or extension, got '" +
-              args.Get("method") + "'");
-  }
-  return *method;
-}
-
-// --level: "top" (-1) or 0..top.
-int LevelOption(const CommandArgs& args, const HoleTexture& texture) {
-  if (args.Get("level") == "top") return texture.counts.levels() - 1;
-  const long level = args.GetInt("level");
-  if (level < 0 || level >= texture.counts.levels()) {
-    args.Fail("option '--level': the mask's pyramid has levels 0.." +
-              std::to_string(texture.counts.levels() - 1) + " (or top)");
-  }
-  return static_cast<int>(level);
 }
 
 glm::dvec3 WallColorOption(const CommandArgs& args) {
@@ -413,6 +360,7 @@ int RunHoles(int argc, char** argv) {
   if (sub == "analyze") return RunAnalyze(argc, argv);
   if (sub == "eval") return RunHolesEval(argc, argv);
   if (sub == "truth") return RunTruth(argc, argv);
+  if (sub == "tile") return RunHolesTile(argc, argv);
   if (sub == "--help" || sub == "-h" || sub == "help") {
     std::cout << kHolesUsage;
     return 0;
@@ -421,7 +369,7 @@ int RunHoles(int argc, char** argv) {
   std::cerr << "error: "
             << (sub.empty() ? std::string("clothfit holes needs a subcommand")
                             : "unknown holes subcommand '" + sub + "'")
-            << " (analyze, eval or truth; see 'clothfit holes --help')\n";
+            << " (analyze, eval, truth or tile; see 'clothfit holes --help')\n";
   return 2;
 }
 
@@ -483,7 +431,14 @@ int RunFitHoles(int argc, char** argv) {
   }
   const HolesFitResult fit = FitHoles(table, tile, options);
   ParamFile file;
-  file.params = HolesModel{fit.params, nullptr};
+  file.params = HolesModel{fit.params, StorableTile(tile)};
+  if (!std::get<HolesModel>(file.params).tile) {
+    std::cerr << "warning: the tile has " << tile.texels.counts.size()
+              << " texels (a file holds at most " << kMaxStoredTileTexels
+              << "): " << out
+              << " holds none, so readers need its mask (renderers cannot "
+                 "load it; a higher --level can be stored)\n";
+  }
   file.holes.path = args.Get("mask");
   file.holes.threshold = args.GetDouble("threshold");
   file.holes.method = method;

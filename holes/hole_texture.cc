@@ -216,6 +216,7 @@ HolesTile HolesTileOf(const HoleTexture& texture, HoleMethod method,
 HolesModel LoadHolesModel(const ParamFile& file, const std::string& path,
                           const std::string& mask) {
   HolesModel model = ModelOf<HolesModel>(file, path);
+  if (mask.empty() && model.tile) return model;  // the file's own tile
   std::string mask_path = mask;
   if (mask_path.empty() && !file.holes.path.empty()) {
     mask_path =

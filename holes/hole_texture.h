@@ -39,9 +39,10 @@ HoleDistanceTexel DistanceTexelAt(const CountPyramid& distances, int level,
                                   int x, int y);
 
 // The model of a holes parameter file read from `path` (io/params_json.h):
-// its mask - `mask` when not empty, else the file's "mask" relative to the
-// file's folder - read with the file's threshold and analysed, evaluated
-// at the top level with the file's method (the extension by default).
+// the file's tile when it has one and `mask` is empty; else its mask -
+// `mask` when not empty, else the file's "mask" relative to the file's
+// folder - read with the file's threshold and analysed, evaluated at the
+// top level with the file's method (the extension by default).
 // Throws InputError naming the file when there is no mask to read.
 HolesModel LoadHolesModel(const ParamFile& file, const std::string& path,
                           const std::string& mask = "");

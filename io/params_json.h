@@ -11,7 +11,11 @@
 // The keys, units and ranges of each model's parameters come from its
 // parameter table (models/params.h); an rgb entry is an array of 3 numbers
 // or one number for all three. A holes file names its mask ("mask",
-// "threshold" and "method" record how a fit saw it; informational).
+// "threshold" and "method" record how a fit saw it) and may hold the
+// mask's tile ("tile": the counts of the level the model evaluates,
+// io/holes_tile_json_internal.h), which makes it usable without the mask
+// (api/material.h reads no image). `clothfit fit --model holes` writes the
+// tile when it has at most kMaxStoredTileTexels texels.
 // A cloth thread gives its tangent samples either explicitly ("offsets_deg")
 // or as a tangent curve ("curve_offsets_deg", "curve_lengths", "samples").
 // Unknown keys, missing keys, wrong types and out-of-range values are errors
@@ -45,8 +49,8 @@ struct ParamFile {
   ModelParams params;
   // The "fit" object as serialised JSON text, empty when absent.
   std::string fit_json;
-  // A holes model's mask ("mask", "threshold", "method"); its tile is
-  // null until the mask is analysed.
+  // A holes model's mask ("mask", "threshold", "method"); the model's tile
+  // is the file's "tile", else null until the mask is analysed.
   HolesMaskSource holes;
 };
 

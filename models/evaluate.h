@@ -126,7 +126,8 @@ inline std::string ValidateModel(const ModelParams& params) {
   }
   const HolesModel& h = std::get<HolesModel>(params);
   if (!h.tile) return "a holes model needs its mask";
-  return ValidateParams(h.params);
+  const std::string e = ValidateParams(h.params);
+  return e.empty() ? ValidateHolesTile(*h.tile) : e;
 }
 
 }  // namespace clothfit

@@ -6,7 +6,9 @@
 // here they are plain data.
 #pragma once
 
+#include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "models/holes.h"
@@ -65,6 +67,60 @@ struct HolesTile {
   HoleMethod method = HoleMethod::kExtension;
   LevelTexels texels;
 };
+
+// Most texels a tile stored in a parameter file may have (io/params_json.h
+// "tile"): 4,096 texels of 73 numbers (a 64 x 64 level) are ~2 MB of JSON.
+inline constexpr size_t kMaxStoredTileTexels = 4096;
+
+// "" when `tile` is one a mask can give, else what is wrong: at least one
+// texel; distances for every texel when the method is the extension (and
+// none or one per texel otherwise); every texel's base-texel count T
+// positive and finite and their sum the area; each count in [0, 2 T] (a
+// triangle counts up to 2 per base texel), each cumulative run count in
+// [0, T] and non-decreasing with the distance.
+inline std::string ValidateHolesTile(const HolesTile& tile) {
+  const LevelTexels& l = tile.texels;
+  if (l.counts.empty()) return "tile: has no texels";
+  if (tile.method == HoleMethod::kExtension && l.distances.empty()) {
+    return "tile: the extension needs the run counts (distances)";
+  }
+  if (!l.distances.empty() && l.distances.size() != l.counts.size()) {
+    return "tile: " + std::to_string(l.distances.size()) +
+           " texels of distances for " + std::to_string(l.counts.size()) +
+           " texels of counts";
+  }
+  double sum = 0.0;
+  for (size_t i = 0; i < l.counts.size(); ++i) {
+    const std::string at = "tile.texels[" + std::to_string(i) + "]";
+    const double t = l.counts[i].texels;
+    if (!(t > 0.0 && t < 1e300)) return at + ": must be positive and finite";
+    sum += t;
+    for (double c : l.counts[i].counts) {
+      if (!(c >= 0.0 && c <= 2.0 * t)) {
+        return "tile.counts[" + std::to_string(i) +
+               "]: each count must be in [0, " + std::to_string(2.0 * t) + "]";
+      }
+    }
+    if (l.distances.empty()) continue;
+    const auto& d = l.distances[i].cumulative;
+    for (int dir = 0; dir < kDirections8; ++dir) {
+      for (int j = 0; j < kDistanceBins; ++j) {
+        const double c = d[dir * kDistanceBins + j];
+        const double before = j > 0 ? d[dir * kDistanceBins + j - 1] : 0.0;
+        if (!(c >= before && c <= t)) {
+          return "tile.distances[" + std::to_string(i) +
+                 "]: run counts must be non-decreasing in [0, " +
+                 std::to_string(t) + "] per direction";
+        }
+      }
+    }
+  }
+  if (!(l.area > 0.0) || !(std::abs(sum - l.area) <= 1e-9 * l.area)) {
+    return "tile.area: must be the sum of the texels' counts (" +
+           std::to_string(sum) + ")";
+  }
+  return "";
+}
 
 // The ratios of the tile for the view wo with parameters p: those of the
 // view offset of thickness h (Algorithm 3.1 or the extension).

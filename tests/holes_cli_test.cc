@@ -162,6 +162,75 @@ TEST(HolesCliTest, TruthThenFitRecoversTheThickness) {
   for (size_t i = 0; i < same.rows.size(); ++i) {
     EXPECT_NEAR(same.rows[i].value.x, evaluated.rows[i].value.x, 1e-12);
   }
+  // The fit stored its mask's tile: without the mask, eval gives the same.
+  EXPECT_NE(ModelOf<HolesModel>(fit, params).tile, nullptr);
+  fs::rename(mask, dir / "moved.png");
+  const std::string alone = (dir / "alone.csv").string();
+  r = RunClothfit(dir,
+                  {"eval", "--params", params, "--dirs", dirs, "--out", alone});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const MeasurementTable from_tile = ReadTable(alone).table;
+  ASSERT_EQ(from_tile.rows.size(), same.rows.size());
+  for (size_t i = 0; i < same.rows.size(); ++i) {
+    EXPECT_EQ(from_tile.rows[i].value, same.rows[i].value);
+  }
+}
+
+// holes tile writes the file with its mask's tile: the general eval of the
+// result (no mask read) equals that of the original (its mask read), and
+// at level 1 it equals holes eval of the mask at level 1; a level with more
+// texels than a file holds is refused.
+TEST(HolesCliTest, TileCommandStoresTheMasksTile) {
+  const fs::path dir = TestDir();
+  const std::string dirs = WriteDirections(dir);
+  const std::string mask = WriteNet(dir);
+  const std::string original = (dir / "net.json").string();
+  WriteText(original,
+            "{\"model\": \"holes\", \"thickness_texels\": 1.5, "
+            "\"wall_color\": 0.3, \"mask\": \"net.png\"}");
+  auto eval = [&](const std::vector<std::string>& args) {
+    const std::string out = (dir / "o.csv").string();
+    std::vector<std::string> all = args;
+    for (const std::string& a :
+         {"--dirs", dirs.c_str(), "--out", out.c_str()}) {
+      all.push_back(a);
+    }
+    const RunResult r = RunClothfit(dir, all);
+    EXPECT_EQ(r.status, 0) << Describe(r);
+    return ReadTable(out).table;
+  };
+  const std::string top = (dir / "top.json").string();
+  const std::string level1 = (dir / "level1.json").string();
+  RunResult r =
+      RunClothfit(dir, {"holes", "tile", "--params", original, "--out", top});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  r = RunClothfit(dir, {"holes", "tile", "--params", original, "--level", "1",
+                        "--out", level1});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  const ParamFile file = ReadParamFile(level1);
+  const HolesModel& model = ModelOf<HolesModel>(file, level1);
+  ASSERT_NE(model.tile, nullptr);
+  EXPECT_EQ(model.tile->texels.counts.size(), 9u);  // 6 x 6 mask: 3 x 3
+  EXPECT_EQ(file.holes.path, "net.png");
+  const MeasurementTable from_mask = eval({"eval", "--params", original});
+  const MeasurementTable from_tile = eval({"eval", "--params", top});
+  const MeasurementTable mask_level1 = eval(
+      {"holes", "eval", "--mask", mask, "--params", original, "--level", "1"});
+  const MeasurementTable tile_level1 = eval({"eval", "--params", level1});
+  ASSERT_EQ(from_tile.rows.size(), from_mask.rows.size());
+  ASSERT_EQ(tile_level1.rows.size(), mask_level1.rows.size());
+  for (size_t i = 0; i < from_mask.rows.size(); ++i) {
+    EXPECT_EQ(from_tile.rows[i].value, from_mask.rows[i].value);
+    EXPECT_NEAR(tile_level1.rows[i].value.x, mask_level1.rows[i].value.x,
+                1e-12);
+  }
+  const std::string big = (dir / "big.png").string();
+  WriteMask(SquareHoleMask(100, 28), big);  // 128 x 128
+  testing_util::ExpectBadInput(
+      dir,
+      {"holes", "tile", "--params", original, "--mask", big, "--level", "0",
+       "--out", (dir / "big.json").string()},
+      {"16384 texels", "at most 4096"});
 }
 
 TEST(HolesCliTest, GeneralCommandsNeedTheMaskAndTransmittance) {
@@ -266,6 +335,7 @@ TEST(HolesCliTest, HelpForEveryCommand) {
            {"holes", "analyze", "--help"},
            {"holes", "eval", "--help"},
            {"holes", "truth", "--help"},
+           {"holes", "tile", "--help"},
            {"fit", "--model", "holes", "--help"}}) {
     const RunResult r = RunClothfit(dir, args);
     EXPECT_EQ(r.status, 0) << Describe(r);

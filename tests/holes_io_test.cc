@@ -4,6 +4,7 @@
 // holes parameter file.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "data_synthetic/holes_truth.h"
@@ -167,6 +168,84 @@ TEST(HolesParamsTest, FileRoundTripAndErrors) {
           << "'" << piece << "' not in: " << message;
     }
   }
+}
+
+// A tile in the file: the model evaluates from it exactly as from the mask
+// (every level a file may hold, both methods), and LoadHolesModel uses it
+// without reading the mask (which is not there).
+TEST(HolesParamsTest, TileInTheFileEvaluatesAsTheMask) {
+  const fs::path dir = TestDir();
+  const Mask mask =
+      MaskFromRows({"##..#.#.", "#...#..#", "........", "###.##.#", "#.#.#..#",
+                    "...#...#", "#....#..", "##.#.##."});
+  const HoleTexture texture = AnalyzeMask(mask, true);
+  for (HoleMethod method : {HoleMethod::kExtension, HoleMethod::kAlgorithm31}) {
+    for (int level : {0, 1, kTopLevel}) {
+      HolesModel model;
+      model.params.thickness_texels = 1.7;
+      model.params.wall_color = glm::dvec3(0.2, 0.4, 0.6);
+      model.tile = std::make_shared<const HolesTile>(
+          HolesTileOf(texture, method, level));
+      ParamFile file(model);
+      file.holes.path = "absent.png";
+      file.holes.method = method;
+      const std::string path = (dir / "tile.json").string();
+      WriteParamFile(file, path);
+      const ParamFile back = ReadParamFile(path);
+      EXPECT_EQ(ValidateModel(back.params), "");
+      const HolesModel loaded = LoadHolesModel(back, path);
+      ASSERT_NE(loaded.tile, nullptr);
+      for (const glm::dvec3& wo :
+           {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(0.7, -0.3, 0.4)),
+            glm::normalize(glm::dvec3(-2.0, 1.0, 0.3))}) {
+        const glm::dvec3 a = Transmittance(model, wo);
+        const glm::dvec3 b = Transmittance(loaded, wo);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(b[c], a[c], 1e-15);
+      }
+    }
+  }
+}
+
+TEST(HolesParamsTest, DamagedTilesNameTheKey) {
+  const std::string head =
+      "{\"model\": \"holes\", \"thickness_texels\": 1, \"method\": "
+      "\"alg31\", \"tile\": ";
+  const std::string counts9 = "[1, 0, 0, 0, 1, 0, 0, 0, 0]";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> bad = {
+      {"[]", {"'tile'", "JSON object"}},
+      {"{\"area\": 1, \"texels\": [], \"counts\": []}",
+       {"'tile.texels'", "1 to 4096"}},
+      {"{\"area\": 1, \"texels\": [1], \"counts\": [[1, 2]]}",
+       {"'tile.counts[0]'", "9 numbers"}},
+      {"{\"area\": 2, \"texels\": [1], \"counts\": [" + counts9 + "]}",
+       {"'tile.area'", "sum"}},
+      {"{\"area\": 1, \"texels\": [1], \"counts\": [[3, 0, 0, 0, 0, 0, 0, "
+       "0, 0]]}",
+       {"'tile.counts[0]'", "[0, 2"}},
+      {"{\"area\": 1, \"texels\": [-1], \"counts\": [" + counts9 + "]}",
+       {"'tile.texels[0]'", "positive"}},
+      {"{\"area\": 1, \"texels\": [1], \"counts\": [" + counts9 +
+           "], \"extra\": 0}",
+       {"'tile.extra'", "unknown key"}},
+  };
+  for (const auto& [tile, pieces] : bad) {
+    const std::string message =
+        ErrorOf([&] { ParseParamFile(head + tile + "}", "t.json"); });
+    EXPECT_NE(message.find("t.json"), std::string::npos) << message;
+    for (const std::string& piece : pieces) {
+      EXPECT_NE(message.find(piece), std::string::npos)
+          << "'" << piece << "' not in: " << message;
+    }
+  }
+  // The extension needs the run counts.
+  ExpectHas(ErrorOf([&] {
+              ParseParamFile(
+                  "{\"model\": \"holes\", \"thickness_texels\": 1, "
+                  "\"tile\": {\"area\": 1, \"texels\": [1], \"counts\": [" +
+                      counts9 + "]}}",
+                  "t.json");
+            }),
+            {"t.json", "'tile'", "distances"});
 }
 
 }  // namespace

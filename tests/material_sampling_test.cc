@@ -9,13 +9,16 @@
 // are sampled with bilinear and trilinear filtering.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "api/material.h"
+#include "holes/hole_texture.h"
 #include "io/lafortune_mipmap.h"
 #include "io/param_mipmap.h"
+#include "io/params_json.h"
 #include "models/presets.h"
 #include "tests/direction_util.h"
 #include "tests/io_test_util.h"
@@ -233,6 +236,45 @@ TYPED_TEST(MaterialSampling, TextureMapsWithBilinearAndTrilinearFiltering) {
                    filter == TexelFilter::kBilinear ? "bilinear" : "trilinear");
     }
   }
+}
+
+// A holes file that holds its mask's tile loads without the mask (the
+// renderer API reads no image): F and Pdf are 0 and every sample is the
+// direct transmission, weighted by the model's transmittance. Without the
+// tile, loading says how to add it.
+TYPED_TEST(MaterialSampling, HolesFileWithItsTileTransmitsStraightThrough) {
+  using Vec = glm::vec<3, TypeParam>;
+  const Mask mask = MaskFromRows(
+      {"##..#.#.", "#...#..#", "........", "###.##.#", "#.#.#..#"});
+  HolesModel model;
+  model.params.thickness_texels = 0.8;
+  model.params.wall_color = glm::dvec3(0.1, 0.3, 0.5);
+  model.tile = std::make_shared<const HolesTile>(
+      HolesTileOf(AnalyzeMask(mask, true), HoleMethod::kExtension));
+  ParamFile file(model);
+  file.holes.path = "net.png";  // not there: the tile suffices
+  const auto dir = testing_util::FreshTestDir("material_sampling_");
+  const std::string path = (dir / "holes.json").string();
+  WriteParamFile(file, path);
+  const auto m = MaterialT<TypeParam>::Load(path);
+  EXPECT_EQ(m.Kind(), "holes");
+  for (const glm::dvec3& wo : kViews) {
+    const Vec w(wo);
+    const BsdfSampleT<TypeParam> b =
+        m.Sample(w, TypeParam(0.7), TypeParam(0.2));
+    ASSERT_TRUE(b.delta);
+    EXPECT_EQ(b.wi, -w);
+    EXPECT_EQ(b.pdf, TypeParam(1));
+    const glm::dvec3 t = Transmittance(model, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b.weight[c], t[c], 1e-6);
+    EXPECT_EQ(m.F(Dir(20, 10), w), Vec(TypeParam(0)));
+    EXPECT_EQ(m.Pdf(w, -w), TypeParam(0));
+  }
+  file.params = HolesModel{model.params, nullptr};
+  WriteParamFile(file, path);
+  testing_util::ExpectHas(
+      testing_util::ErrorOf([&] { MaterialT<TypeParam>::Load(path); }),
+      {"holes.json", "tile", "net.png", "clothfit holes tile"});
 }
 
 }  // namespace
