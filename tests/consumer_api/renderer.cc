@@ -70,6 +70,14 @@ void CheckMipmap(const std::string& dir) {
   const clothfit::Material b =
       clothfit::Material::Load(path, clothfit::TexelFilter::kBilinear);
   Check(Near(b.F(wi, wo, 0.5, 0.5, 0).x, 0.25, 1e-7), "bilinear");
+  // Sampled with trilinear filtering: the texels' mixture, consistent
+  // with F (diffuse texels: cosine sampling, weight = the blended albedo).
+  const clothfit::Material t =
+      clothfit::Material::Load(path, clothfit::TexelFilter::kTrilinear);
+  const clothfit::BsdfSampleT<double> s = t.Sample(wo, 0.4, 0.3, 0.5, 0.5, 0.5);
+  Check(s.pdf > 0.0 && Near(s.pdf, t.Pdf(wo, s.wi, 0.5, 0.5, 0.5), 1e-12) &&
+            Near(s.weight.x, (0.5 * 0.25 + 0.5 * 0.7) * clothfit::kPi, 1e-6),
+        "trilinear sample");
 }
 
 }  // namespace
