@@ -13,6 +13,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/energy.h"
 #include "fitting/model_selection.h"
+#include "fitting/sheen_fit.h"
 #include "fitting/thread_fit.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
@@ -246,8 +247,10 @@ int RunFit(int argc, char** argv) {
       "auto --data T.csv [--fit-scale] [--folds K] --out P.json [options]\n"
       "       clothfit fit --model slab --data T.csv[,D.csv,...] [--init "
       "P.json] [--per-channel-tau] "
-      "--out P.json [options]\n       clothfit fit --model "
-      "lafortune ... (see clothfit fit --model lafortune --help)\n       "
+      "--out P.json [options]\n       clothfit fit --model sheen --data "
+      "T.csv [--init P.json] --out P.json [options]\n       clothfit fit "
+      "--model lafortune ... (see clothfit fit --model lafortune --help)\n     "
+      "  "
       "clothfit fit --model holes ... (see clothfit fit --model holes "
       "--help)",
       "Fits a model to a measurement table with Ceres (Levenberg-Marquardt, "
@@ -262,7 +265,8 @@ int RunFit(int argc, char** argv) {
       "(docs/slab.md).\nExit status 1 when "
       "the fit reaches no usable solution or does not converge.");
   args.Option("model", "M",
-              "thread, cloth, slab, auto (or lafortune, holes); auto: picks "
+              "thread, cloth, slab, sheen, auto (or lafortune, holes); "
+              "sheen: the glTF cloth material; auto: picks "
               "the family by held-out error (docs/fitting.md)");
   args.Option("data", "T.csv",
               "measurement table (SPEC §2); slab: A.csv,B.csv,... ");
@@ -402,9 +406,35 @@ int RunFit(int argc, char** argv) {
     WarnNotReflection(r.report, "cloth");
     return Finish(args, r.params, r.report, truth_values, nullptr);
   }
+  if (model == "sheen") {
+    if (args.Has("preset") || args.Has("fit-scale") || tolerance) {
+      args.Fail("--preset, --fit-scale and --tolerance are not for sheen");
+    }
+    SheenFitOptions options;
+    options.solver = solver;
+    options.fix = fix;
+    options.free_only = free_only;
+    if (starts > 0) options.solve_starts = starts;
+    if (args.Has("init")) {
+      const ParamFile init = ReadParamFile(args.Get("init"));
+      if (!std::holds_alternative<SheenParams>(init.params)) {
+        args.Fail(args.Get("init") + ": expected a sheen parameter file");
+      }
+      options.init = std::get<SheenParams>(init.params);
+    }
+    std::vector<double> truth_values;
+    if (truth && std::holds_alternative<SheenParams>(truth->params)) {
+      const SheenParams& p = std::get<SheenParams>(truth->params);
+      truth_values.resize(FlatSize(p));
+      ToArray(p, truth_values.data());
+    }
+    const SheenFitResult r = FitSheen(table, options);
+    WarnNotReflection(r.report, "sheen");
+    return Finish(args, r.params, r.report, truth_values, nullptr);
+  }
   args.Fail(
-      "option '--model': expected thread, cloth, slab, auto, lafortune or "
-      "holes, got '" +
+      "option '--model': expected thread, cloth, slab, sheen, auto, "
+      "lafortune or holes, got '" +
       model + "'");
 }
 

@@ -237,6 +237,11 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     const std::string e = ValidateParams(p);
     if (!e.empty()) FailValidation(name, e);
     out.params = p;
+  } else if (model == "sheen") {
+    const SheenParams p = ReadParamKeys<SheenParams>(r);
+    const std::string e = ValidateParams(p);
+    if (!e.empty()) FailValidation(name, e);
+    out.params = p;
   } else if (model == "holes") {
     HolesModel h;
     h.params = ReadParamKeys<HolesParams>(r, {kHolesWallColor.name});
@@ -262,7 +267,8 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
   } else {
     r.Fail("model", "unknown model \"" + model +
                         "\" (expected \"thread\", \"cloth\", "
-                        "\"lafortune\", \"slab\" or \"holes\")");
+                        "\"lafortune\", \"slab\", \"holes\" or "
+                        "\"sheen\")");
   }
   if (r.Has("fit")) out.fit_json = r.Get("fit").dump();
   r.Finish();
@@ -304,6 +310,8 @@ std::string FormatParamFile(const ParamFile& file) {
   } else if (const auto* p = std::get_if<SlabParams>(&file.params)) {
     WriteParamKeys(*p, &j);
     if (SlabTauIsScalar(*p)) j[kSlabTau.name] = p->tau.x;
+  } else if (const auto* p = std::get_if<SheenParams>(&file.params)) {
+    WriteParamKeys(*p, &j);
   } else if (const auto* h = std::get_if<HolesModel>(&file.params)) {
     WriteParamKeys(h->params, &j);
     if (!file.holes.path.empty()) j["mask"] = file.holes.path;

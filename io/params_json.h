@@ -7,6 +7,8 @@
 //   {"model": "slab", "tau": 0.5, "albedo": [0.9, 0.8, 0.7]}
 //   {"model": "holes", "thickness_texels": 2.0, "wall_color": [0, 0, 0],
 //    "mask": "net.png", "threshold": 0.5, "method": "extension"}
+//   {"model": "sheen", "base_color": [0.3, 0.2, 0.1], "roughness": 0.8,
+//    "sheen_color": [0.6, 0.5, 0.4], "sheen_roughness": 0.4}
 //
 // The keys, units and ranges of each model's parameters come from its
 // parameter table (models/params.h); an rgb entry is an array of 3 numbers

@@ -16,12 +16,13 @@
 #include "models/microcylinder_cloth.h"
 #include "models/microcylinder_thread.h"
 #include "models/quantity.h"
+#include "models/sheen.h"
 #include "models/slab.h"
 
 namespace clothfit {
 
 using ModelParams = std::variant<ThreadParams, ClothParams, LafortuneModel,
-                                 SlabParams, HolesModel>;
+                                 SlabParams, HolesModel, SheenParams>;
 
 // Smallest wi.z used to turn rho into the BRDF f = rho / wi.z, so that f
 // stays finite at exactly grazing incidence.
@@ -92,7 +93,7 @@ inline bool ModelPredicts(const ModelParams& params, Quantity q) {
       params);
 }
 
-// "thread" | "cloth" | "lafortune" | "slab" | "holes".
+// "thread" | "cloth" | "lafortune" | "slab" | "holes" | "sheen".
 inline const char* ModelName(const ModelParams& params) {
   return std::visit(
       [](const auto& p) { return kModelInfo<std::decay_t<decltype(p)>>.name; },
@@ -122,6 +123,9 @@ inline std::string ValidateModel(const ModelParams& params) {
     return e.empty() ? ValidateViewTable(m->lut) : e;
   }
   if (const auto* s = std::get_if<SlabParams>(&params)) {
+    return ValidateParams(*s);
+  }
+  if (const auto* s = std::get_if<SheenParams>(&params)) {
     return ValidateParams(*s);
   }
   const HolesModel& h = std::get<HolesModel>(params);

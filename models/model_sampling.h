@@ -27,6 +27,9 @@
 //   scattering sends about half of the scattered light to each side); the
 //   rest 1/2 cosine-weighted on wo's side (reflection), 1/2 on the other
 //   (transmission).
+// - sheen (glTF): 3/4 cosine-weighted (the sheen, the diffuse base), 1/4
+//   reflection about a GGX half vector of the base's roughness, mirrored
+//   into the upper hemisphere.
 // - holes: the layer transmits straight through (models/holes_tile.h): a
 //   delta at wi = -wo with probability 1, weight its transmittance.
 //
@@ -279,6 +282,30 @@ inline double WiPdf(const HolesModel&, const glm::dvec3&, const glm::dvec3&) {
   return 0.0;
 }
 
+// ---- sheen (the glTF material) ----
+template <typename R>
+R DeltaShare(const SheenParamsT<R>&, const Vec3<R>&) {
+  return R(0.0);
+}
+
+template <typename R>
+Vec3<R> SampleWiContinuous(const SheenParamsT<R>& p, const Vec3<R>& wo, R u1,
+                           const R& u2) {
+  if (u1 < R(0.75)) return SampleCosineHemisphere(u1 / R(0.75), u2);
+  u1 = Clamp((u1 - R(0.75)) * R(4.0), R(0.0), kOneBelow<R>);
+  return MirrorToUpper(
+      SampleGgxReflection(p.roughness * p.roughness, wo, u1, u2));
+}
+
+template <typename R>
+R WiPdf(const SheenParamsT<R>& p, const Vec3<R>& wo, const Vec3<R>& wi) {
+  if (!(wi.z >= R(0.0))) return R(0.0);
+  const R alpha = p.roughness * p.roughness;
+  return R(0.75) * CosineHemispherePdf(wi) +
+         R(0.25) * (GgxReflectionPdf(alpha, wo, wi) +
+                    GgxReflectionPdf(alpha, wo, MirrorZ(wi)));
+}
+
 // ---- every model ----
 
 // The light a delta sample carries, per channel: the direct transmittance
@@ -337,6 +364,7 @@ auto VisitPrepared(const PreparedModel<R>& model, const F& f) {
 template <typename P, typename R>
 using SamplerScalar =
     std::conditional_t<std::is_same_v<P, ThreadParamsT<R>> ||
+                           std::is_same_v<P, SheenParamsT<R>> ||
                            std::is_same_v<P, PreparedCloth<R>> ||
                            std::is_same_v<P, PreparedLafortune<R>>,
                        R, double>;

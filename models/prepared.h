@@ -6,7 +6,7 @@
 // - cloth: the tangent t and local normal n of every sample
 //   (MakeTangentFrame: two sine/cosine pairs per sample and evaluation);
 // - Lafortune: the texel's frame (MakeTexelFrame of its normal);
-// - thread: its parameters in R;
+// - thread and sheen (glTF): their parameters in R;
 // - slab and holes: evaluated in double and rounded to R (their
 //   series and limits are written for double).
 // A float material whose values can leave float's range (a Lafortune file's
@@ -128,8 +128,9 @@ inline bool LafortuneFitsFloat(const LafortuneModel& m) {
 // above, or the double parameters themselves (slab, holes, and float
 // materials beyond float's range).
 template <typename R>
-using PreparedModel = std::variant<ThreadParamsT<R>, PreparedCloth<R>,
-                                   PreparedLafortune<R>, ModelParams>;
+using PreparedModel =
+    std::variant<ThreadParamsT<R>, PreparedCloth<R>, PreparedLafortune<R>,
+                 SheenParamsT<R>, ModelParams>;
 
 template <typename R>
 PreparedModel<R> PrepareModel(const ModelParams& params) {
@@ -138,6 +139,11 @@ PreparedModel<R> PrepareModel(const ModelParams& params) {
   }
   if (const auto* c = std::get_if<ClothParams>(&params)) {
     return PrepareCloth<R>(*c);
+  }
+  if (const auto* g = std::get_if<SheenParams>(&params)) {
+    SheenParamsT<R> out;
+    prepared_internal::CastFlat<R>(*g, &out);
+    return out;
   }
   if (const auto* m = std::get_if<LafortuneModel>(&params)) {
     if (std::is_same_v<R, double> || LafortuneFitsFloat(*m)) {

@@ -7,6 +7,7 @@
 //   max(w.a, 0)^N (Lafortune and Willems 1994);
 // - the longitudinal cone of a thread's specular lobe (truncated logistic in
 //   theta = asin(w.t) about the axis t, uniform azimuth);
+// - reflection about a GGX visible normal (the glTF base's specular lobe);
 // - mirroring through the surface plane: a density p on the whole sphere,
 //   sampled and then mirrored (w.z -> -w.z when w.z < 0), has the density
 //   p(w) + p(mirror(w)) on the upper hemisphere. So no sample is lost below
@@ -114,6 +115,52 @@ Vec3<R> MirrorZ(const Vec3<R>& w) {
 template <typename R>
 Vec3<R> MirrorToUpper(const Vec3<R>& w) {
   return w.z < R(0.0) ? MirrorZ(w) : w;
+}
+
+// Reflection about a GGX normal visible from wo (Heitz 2018, "Sampling the
+// GGX Distribution of Visible Normals", Listing 1; wo.z > 0): h from the
+// visible normals' density G1(wo) max(wo.h, 0) D(h) / wo.z, wi the mirror
+// of wo about h, so pdf(wi) = G1(wo) D(h) / (4 wo.z) with h = (wi + wo) /
+// |wi + wo| (h.z > 0), over the whole sphere (wi may lie below the
+// surface). Unlike sampling D(h) cos(theta_h), it never picks an h that
+// faces away from wo, and the density has no 1 / |wi + wo| singularity.
+template <typename R>
+Vec3<R> SampleGgxReflection(const R& alpha, const Vec3<R>& wo, const R& u1,
+                            const R& u2) {
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  const Vec3<R> vh =
+      glm::normalize(Vec3<R>(alpha * wo.x, alpha * wo.y, Max(wo.z, R(1e-7))));
+  const R lensq = vh.x * vh.x + vh.y * vh.y;
+  const Vec3<R> t1 = lensq > R(0.0) ? Vec3<R>(-vh.y, vh.x, R(0.0)) / sqrt(lensq)
+                                    : Vec3<R>(R(1.0), R(0.0), R(0.0));
+  const Vec3<R> t2 = glm::cross(vh, t1);
+  const R r = sqrt(u1), phi = R(2.0 * kPi) * u2;
+  const R p1 = r * cos(phi);
+  const R s = R(0.5) * (R(1.0) + vh.z);
+  const R p2 =
+      (R(1.0) - s) * sqrt(Max(R(1.0) - p1 * p1, R(0.0))) + s * r * sin(phi);
+  const Vec3<R> nh =
+      t1 * p1 + t2 * p2 + vh * sqrt(Max(R(1.0) - p1 * p1 - p2 * p2, R(0.0)));
+  const Vec3<R> h =
+      glm::normalize(Vec3<R>(alpha * nh.x, alpha * nh.y, Max(nh.z, R(0.0))));
+  return h * (R(2.0) * glm::dot(wo, h)) - wo;
+}
+
+template <typename R>
+R GgxReflectionPdf(const R& alpha, const Vec3<R>& wo, const Vec3<R>& wi) {
+  using std::sqrt;
+  const Vec3<R> sum = wi + wo;
+  const R len = sqrt(glm::dot(sum, sum));
+  if (!(len > R(0.0) && wo.z > R(0.0))) return R(0.0);
+  const R cos_h = sum.z / len;
+  if (!(cos_h > R(0.0))) return R(0.0);
+  const R a2 = alpha * alpha;
+  const R d = a2 / (R(kPi) * Sqr(cos_h * cos_h * (a2 - R(1.0)) + R(1.0)));
+  const R g1 =
+      R(2.0) * wo.z / (wo.z + sqrt(a2 * (R(1.0) - wo.z * wo.z) + wo.z * wo.z));
+  return g1 * d / (R(4.0) * wo.z);
 }
 
 // The longitudinal cone of a thread's specular lobe for the view wo: the

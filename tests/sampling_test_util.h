@@ -30,17 +30,20 @@ inline int SphereBin(const glm::dvec3& w) {
 // (z, phi) per bin (d omega = dz dphi). The bands at the poles are
 // integrated in s with z = +-(1 - s^2) on a 4x finer grid, which takes out
 // the 1 / sqrt(1 - z) of a density that concentrates at a pole (a thread
-// cone about +z at normal view).
+// cone about +z at normal view); the two bands at the horizon use a 4x
+// finer grid in z and phi (a narrow lobe of a grazing view peaks there,
+// its samples mirrored into the upper hemisphere).
 inline std::vector<double> BinIntegrals(
     const std::function<double(const glm::dvec3&)>& pdf, int n) {
   std::vector<double> p(kZBins * kPhiBins, 0.0);
-  const double band = 2.0 / kZBins, dphi = 2.0 * kPi / (kPhiBins * n);
-  auto add_ring = [&](int bin_z, double z, double dz) {
+  const double band = 2.0 / kZBins;
+  auto add_ring = [&](int bin_z, double z, double dz, int m) {
     const double r = std::sqrt(std::max(1.0 - z * z, 0.0));
-    for (int k = 0; k < kPhiBins * n; ++k) {
+    const double dphi = 2.0 * kPi / (kPhiBins * m);
+    for (int k = 0; k < kPhiBins * m; ++k) {
       const double phi = (k + 0.5) * dphi;
       const glm::dvec3 w(r * std::cos(phi), r * std::sin(phi), z);
-      p[bin_z * kPhiBins + k / n] += pdf(w) * dz * dphi;
+      p[bin_z * kPhiBins + k / m] += pdf(w) * dz * dphi;
     }
   };
   for (int b = 0; b < kZBins; ++b) {
@@ -50,13 +53,15 @@ inline std::vector<double> BinIntegrals(
       const double ds = std::sqrt(band) / m;
       for (int i = 0; i < m; ++i) {
         const double s = (i + 0.5) * ds;
-        add_ring(b, sign * (1.0 - s * s), 2.0 * s * ds);
+        add_ring(b, sign * (1.0 - s * s), 2.0 * s * ds, n);
       }
       continue;
     }
-    const double dz = band / n;
-    for (int i = 0; i < n; ++i)
-      add_ring(b, -1.0 + b * band + (i + 0.5) * dz, dz);
+    const int m = (b == kZBins / 2 - 1 || b == kZBins / 2) ? 4 * n : n;
+    const double dz = band / m;
+    for (int i = 0; i < m; ++i) {
+      add_ring(b, -1.0 + b * band + (i + 0.5) * dz, dz, m);
+    }
   }
   return p;
 }
