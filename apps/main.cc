@@ -49,6 +49,8 @@ const Command kCommands[] = {
     {"bench", CLOTHFIT_IMAGES(clothfit::RunBench),
      "speed against accuracy of every fitter"},
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
+    {"export", clothfit::RunExport,
+     "a fitted model as a glTF 2.0 cloth (KHR_materials_sheen)"},
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
     {"holes", CLOTHFIT_IMAGES(clothfit::RunHoles),
      "semi-transparent textures with thickness (analyze|eval|truth)"},

@@ -16,7 +16,7 @@ include(CMakePackageConfigHelpers)
 
 set(CLOTHFIT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/clothfit)
 
-foreach(dir models io data_synthetic holes fitting charts bench api render)
+foreach(dir models io data_synthetic holes fitting export charts bench api render)
   install(DIRECTORY ${CMAKE_SOURCE_DIR}/${dir}/
           DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/clothfit/${dir}
           FILES_MATCHING PATTERN "*.h" PATTERN "*_internal.h" EXCLUDE)
@@ -31,9 +31,10 @@ add_library(clothfit_all INTERFACE)
 set_target_properties(clothfit_all PROPERTIES EXPORT_NAME clothfit)
 target_link_libraries(clothfit_all INTERFACE clothfit_models clothfit_io
   clothfit_images clothfit_synthetic clothfit_holes clothfit_fitting
-  clothfit_charts clothfit_bench clothfit_api clothfit_render)
+  clothfit_export clothfit_charts clothfit_bench clothfit_api clothfit_render)
 
-foreach(lib models io images synthetic holes fitting charts bench api render)
+foreach(lib models io images synthetic holes fitting export charts bench api
+    render)
   set_target_properties(clothfit_${lib} PROPERTIES EXPORT_NAME ${lib})
 endforeach()
 
@@ -47,7 +48,7 @@ install(TARGETS clothfit_io clothfit_api EXPORT clothfit_api_targets
 install(EXPORT clothfit_api_targets NAMESPACE clothfit::
         FILE clothfit-api-targets.cmake DESTINATION ${CLOTHFIT_CMAKE_DIR})
 install(TARGETS clothfit_images clothfit_synthetic clothfit_holes
-          clothfit_fitting clothfit_charts clothfit_bench clothfit_render
+          clothfit_fitting clothfit_export clothfit_charts clothfit_bench clothfit_render
           clothfit_all
         EXPORT clothfit_targets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

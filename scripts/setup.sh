@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-scipy  # the bench's peer (benchmarks/peer/); optional at run time
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (fuzz/)
+  nodejs npm  # the tests' web tools (web/: the Khronos glTF validator)
 )
 
 missing=()
@@ -27,6 +28,14 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get update -q
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q \
     --no-install-recommends "${missing[@]}"
+fi
+
+# The tests' npm packages (web/package.json), at the versions of
+# web/package-lock.json; again only when the lock file changed.
+if ! cmp -s web/package-lock.json web/node_modules/.clothfit-lock.json; then
+  echo "setup: installing web/'s npm packages"
+  (cd web && npm ci --no-audit --no-fund --loglevel=error &&
+    cp package-lock.json node_modules/.clothfit-lock.json)
 fi
 
 BUILD_DIR=${BUILD_DIR:-build}

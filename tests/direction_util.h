@@ -1,4 +1,4 @@
-// Directions and presets as the model tests write them.
+// Directions, presets and example materials as the model tests write them.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -8,6 +8,7 @@
 
 #include "models/math.h"
 #include "models/presets.h"
+#include "models/sheen.h"
 
 namespace clothfit {
 namespace testing_util {
@@ -24,6 +25,17 @@ inline ClothParams Preset(const std::string& name) {
   ClothParams c;
   EXPECT_TRUE(GetPreset(name, &c)) << name;
   return c;
+}
+
+// A glTF cloth material with every part visible: a coloured base of medium
+// roughness under a bright, fairly smooth sheen.
+inline SheenParams Velvety() {
+  SheenParams p;
+  p.base_color = glm::dvec3(0.3, 0.2, 0.1);
+  p.roughness = 0.6;
+  p.sheen_color = glm::dvec3(0.7, 0.5, 0.4);
+  p.sheen_roughness = 0.35;
+  return p;
 }
 
 }  // namespace testing_util

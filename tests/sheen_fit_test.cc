@@ -21,15 +21,7 @@ namespace {
 using testing_util::Dir;
 using testing_util::NoisyTable;
 using testing_util::Param;
-
-SheenParams Velvety() {
-  SheenParams p;
-  p.base_color = glm::dvec3(0.3, 0.2, 0.1);
-  p.roughness = 0.6;
-  p.sheen_color = glm::dvec3(0.7, 0.5, 0.4);
-  p.sheen_roughness = 0.35;
-  return p;
-}
+using testing_util::Velvety;
 
 // Without sheen the material is the glTF dielectric: at normal incidence
 // (h = n, v.h = 1) F = 0.04, and for roughness 1 (alpha 1) D = 1 / pi and

@@ -1,0 +1,110 @@
+// clothfit export --format gltf: a fitted model, a preset or a measured
+// table as a glTF 2.0 cloth (export/gltf.h) whose material, the glTF
+// metallic-roughness base under KHR_materials_sheen (models/sheen.h), is
+// fitted to the source (fitting/sheen_conversion.h); the error the
+// conversion leaves is printed and stored in the material's extras.
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/commands.h"
+#include "export/gltf.h"
+#include "fitting/sheen_conversion.h"
+#include "io/text_util.h"
+
+namespace clothfit {
+
+int RunExport(int argc, char** argv) {
+  CommandArgs args(
+      "export",
+      "clothfit export --format gltf (--params P.json | --preset NAME | "
+      "--data T.csv) --out FILE.gltf|FILE.glb",
+      "Writes a glTF 2.0 cloth (a draped sheet) whose material - the "
+      "metallic-roughness base (metallic 0)\nunder KHR_materials_sheen - is "
+      "fitted to the source: a parameter file's or a preset's reflectance\n"
+      "on a grid of 108 x 108 directions (rho = f cos), or a measured table. "
+      "The error the conversion\nleaves is printed and stored in the "
+      "material's extras (docs/renderer.md).");
+  args.Option("format", "F", "gltf", "gltf");
+  args.Option("params", "P.json", "a fitted model (any reflection model)");
+  args.Option("preset", "NAME", "a preset fabric instead");
+  args.Option("data", "T.csv", "a measured table instead");
+  args.Option("out", "FILE.gltf", ".gltf (+ .bin beside it) or .glb");
+  args.Option("grid", "N", "quads per side of the sheet", "48");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  if (args.Get("format") != "gltf") {
+    args.Fail("option '--format': expected gltf, got '" + args.Get("format") +
+              "'");
+  }
+  const std::string out = args.Required("out");
+  if (!text_util::HasExtension(out, ".gltf") &&
+      !text_util::HasExtension(out, ".glb")) {
+    args.Fail("option '--out': a glTF file ends in .gltf or .glb");
+  }
+  const int sources =
+      args.Has("params") + args.Has("preset") + args.Has("data");
+  if (sources != 1) {
+    args.Fail("give exactly one of --params, --preset and --data");
+  }
+  const long grid = args.GetInt("grid");
+  if (grid < 1 || grid > 1024)
+    args.Fail("option '--grid': must be in [1, 1024]");
+  CheckWritable(out);
+  std::string source, source_model;
+  SheenConversion conversion;
+  if (args.Has("data")) {
+    const MeasurementTable table = ReadDataOption(args);
+    source = args.Get("data");
+    source_model = "measured table";
+    conversion = ConvertToSheen(table, NoiseModel());
+  } else {
+    if (args.Has("params") &&
+        text_util::HasExtension(args.Get("params"), ".exr")) {
+      args.Fail(args.Get("params") +
+                ": texture maps are not exported yet (only one material)");
+    }
+    const ParamFile file = LoadModelOption(args);
+    source = args.Has("params") ? args.Get("params") : args.Get("preset");
+    source_model = ModelName(file.params);
+    NoiseModel absolute;
+    absolute.kind = NoiseKind::kAbsolute;
+    conversion = ConvertToSheen(ReflectionGrid(file.params), absolute);
+  }
+  const SheenParams& s = conversion.params;
+  nlohmann::ordered_json extras = {
+      {"clothfit",
+       {{"source", source},
+        {"source_model", source_model},
+        {"conversion",
+         {{"quantity", conversion.quantity},
+          {"rows", conversion.rows},
+          {"relative_rms", conversion.relative_rms},
+          {"rms", conversion.rms},
+          {"converged", conversion.report.converged}}}}}};
+  GltfMaterial material;
+  material.name =
+      source_model == "measured table" ? "measured cloth" : source_model;
+  material.sheen = s;
+  material.extras_json = extras.dump();
+  const std::vector<std::string> written =
+      WriteGltf(ClothMesh(static_cast<int>(grid)), material, out);
+  std::printf(
+      "%s (%s) as glTF sheen: base_color %.4g %.4g %.4g, roughness %.4g, "
+      "sheen_color %.4g %.4g %.4g, sheen_roughness %.4g\n"
+      "conversion error: relative rms %.4g (rms %.4g) over %d rows of %s\n",
+      source.c_str(), source_model.c_str(), s.base_color.x, s.base_color.y,
+      s.base_color.z, s.roughness, s.sheen_color.x, s.sheen_color.y,
+      s.sheen_color.z, s.sheen_roughness, conversion.relative_rms,
+      conversion.rms, conversion.rows, conversion.quantity.c_str());
+  for (const std::string& f : written) std::printf("wrote %s\n", f.c_str());
+  if (!conversion.report.converged) {
+    std::cerr << "error: the material's fit did not converge ("
+              << conversion.report.termination
+              << "): " << conversion.report.message << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace clothfit

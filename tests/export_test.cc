@@ -1,0 +1,183 @@
+// The glTF export (export/gltf.h, fitting/sheen_conversion.h, clothfit
+// export): the sheet's mesh, the document's structure and the .glb
+// container as glTF 2.0 defines them, the conversion (exact for a sheen
+// source, its error stored and printed for others), bad input, and the
+// Khronos glTF Validator's verdict (web/validate_gltf.mjs, installed by
+// scripts/setup.sh).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "export/gltf.h"
+#include "fitting/sheen_conversion.h"
+#include "models/presets.h"
+#include "tests/cli_test_util.h"
+#include "tests/direction_util.h"
+#include "tests/io_test_util.h"
+
+namespace clothfit {
+namespace {
+
+using testing_util::Velvety;
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using testing_util::Describe;
+using testing_util::RunClothfit;
+using testing_util::RunResult;
+
+glm::vec3 At(const std::vector<float>& v, uint32_t i) {
+  return glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+}
+
+TEST(GltfExport, SheetHasUnitNormalsAndTrianglesFacingThem) {
+  const TriangleMesh mesh = ClothMesh(8);
+  ASSERT_EQ(mesh.Vertices(), 81u);
+  ASSERT_EQ(mesh.indices.size(), 8u * 8u * 6u);
+  ASSERT_EQ(mesh.uvs.size(), 2 * mesh.Vertices());
+  for (uint32_t i = 0; i < mesh.Vertices(); ++i) {
+    EXPECT_NEAR(glm::length(At(mesh.normals, i)), 1.0f, 1e-6f);
+  }
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const uint32_t a = mesh.indices[t], b = mesh.indices[t + 1],
+                   c = mesh.indices[t + 2];
+    ASSERT_LT(std::max({a, b, c}), mesh.Vertices());
+    const glm::vec3 face =
+        glm::cross(At(mesh.positions, b) - At(mesh.positions, a),
+                   At(mesh.positions, c) - At(mesh.positions, a));
+    EXPECT_GT(glm::dot(face, At(mesh.normals, a)), 0.0f) << "triangle " << t;
+  }
+}
+
+TEST(GltfExport, DocumentAndGlbFollowTheSpecification) {
+  const TriangleMesh mesh = ClothMesh(4);
+  GltfMaterial material;
+  material.sheen = Velvety();
+  material.extras_json = "{\"note\": 1}";
+  const GltfDocument doc = BuildGltf(mesh, material, "c.bin");
+  const json j = json::parse(doc.json);
+  EXPECT_EQ(j["asset"]["version"], "2.0");
+  EXPECT_EQ(j["buffers"][0]["uri"], "c.bin");
+  EXPECT_EQ(j["buffers"][0]["byteLength"], doc.bin.size());
+  for (const json& view : j["bufferViews"]) {
+    EXPECT_EQ(view["byteOffset"].get<size_t>() % 4, 0u);
+    EXPECT_LE(
+        view["byteOffset"].get<size_t>() + view["byteLength"].get<size_t>(),
+        doc.bin.size());
+  }
+  EXPECT_EQ(j["accessors"][0]["count"], mesh.Vertices());
+  EXPECT_EQ(j["accessors"][3]["count"], mesh.indices.size());
+  EXPECT_EQ(j["accessors"][0]["max"][0], 1.0);
+  const json& m = j["materials"][0];
+  EXPECT_EQ(m["pbrMetallicRoughness"]["metallicFactor"], 0.0);
+  EXPECT_EQ(m["pbrMetallicRoughness"]["roughnessFactor"], 0.6);
+  EXPECT_EQ(m["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"],
+            0.35);
+  EXPECT_EQ(m["extensions"]["KHR_materials_sheen"]["sheenColorFactor"][1], 0.5);
+  EXPECT_EQ(m["extras"]["note"], 1);
+  // .glb: "glTF", version 2, total length, then the JSON and BIN chunks.
+  const GltfDocument glb_doc = BuildGltf(mesh, material, "");
+  EXPECT_FALSE(json::parse(glb_doc.json)["buffers"][0].contains("uri"));
+  const std::vector<uint8_t> glb = GlbBytes(glb_doc);
+  auto u32 = [&](size_t at) {
+    uint32_t v;
+    std::memcpy(&v, glb.data() + at, 4);
+    return v;
+  };
+  EXPECT_EQ(u32(0), 0x46546C67u);
+  EXPECT_EQ(u32(4), 2u);
+  EXPECT_EQ(u32(8), glb.size());
+  const uint32_t json_length = u32(12);
+  EXPECT_EQ(json_length % 4, 0u);
+  EXPECT_EQ(u32(16), 0x4E4F534Au);
+  EXPECT_EQ(u32(20 + json_length), (glb_doc.bin.size() + 3) / 4 * 4);
+  EXPECT_EQ(u32(24 + json_length), 0x004E4942u);
+}
+
+TEST(GltfExport, ConversionIsExactForASheenSourceAndMeasuredForCloth) {
+  NoiseModel absolute;
+  absolute.kind = NoiseKind::kAbsolute;
+  const SheenConversion exact =
+      ConvertToSheen(ReflectionGrid(Velvety()), absolute);
+  EXPECT_TRUE(exact.report.converged);
+  EXPECT_LT(exact.relative_rms, 1e-6);
+  EXPECT_NEAR(exact.params.sheen_roughness, 0.35, 1e-5);
+  EXPECT_NEAR(exact.params.base_color.x, 0.3, 1e-5);
+  EXPECT_EQ(exact.rows, 108 * 108);
+  ClothParams satin;
+  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
+  const SheenConversion lossy = ConvertToSheen(ReflectionGrid(satin), absolute);
+  EXPECT_TRUE(std::isfinite(lossy.relative_rms));
+  EXPECT_GT(lossy.relative_rms, 0.01);  // a sheen is not a satin
+  EXPECT_LT(lossy.relative_rms, 1.0);   // but better than nothing
+  // A model that does not reflect has no glTF material.
+  EXPECT_THROW(ReflectionGrid(HolesModel{}), InputError);
+}
+
+// The Khronos glTF Validator on `file`: exit 0 (no error, no warning).
+void ExpectValid(const fs::path& file) {
+  const std::string web = std::string(CLOTHFIT_SOURCE_DIR) + "/web";
+  ASSERT_TRUE(fs::exists(web + "/node_modules/gltf-validator"))
+      << "the validator is missing: run scripts/setup.sh (npm ci in web/)";
+  const std::string log = file.string() + ".validator.txt";
+  const std::string command = "node " +
+                              testing_util::Quote(web + "/validate_gltf.mjs") +
+                              " " + testing_util::Quote(file.string()) + " >" +
+                              testing_util::Quote(log) + " 2>&1";
+  const int status = std::system(command.c_str());
+  EXPECT_EQ(status, 0) << testing_util::ReadText(log);
+}
+
+TEST(GltfExport, CliWritesFilesTheValidatorAccepts) {
+  const fs::path dir = testing_util::FreshTestDir("export_");
+  const std::string gltf = (dir / "satin.gltf").string();
+  RunResult r = RunClothfit(dir, {"export", "--format", "gltf", "--preset",
+                                  "polyester_satin_charmeuse", "--out", gltf});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  ASSERT_TRUE(fs::exists(dir / "satin.bin"));
+  const json j = json::parse(testing_util::ReadText(gltf));
+  const json& conversion =
+      j["materials"][0]["extras"]["clothfit"]["conversion"];
+  const double relative_rms = conversion["relative_rms"].get<double>();
+  EXPECT_GT(relative_rms, 0.0);
+  char printed[64];
+  std::snprintf(printed, sizeof(printed), "relative rms %.4g", relative_rms);
+  EXPECT_NE(r.out.find(printed), std::string::npos) << r.out;
+  ExpectValid(gltf);
+  // A sheen parameter file as one .glb.
+  const std::string params = (dir / "s.json").string();
+  testing_util::WriteText(
+      params,
+      "{\"model\": \"sheen\", \"base_color\": [0.3, 0.2, 0.1], \"roughness\": "
+      "0.6, \"sheen_color\": [0.7, 0.5, 0.4], \"sheen_roughness\": 0.35}");
+  const std::string glb = (dir / "s.glb").string();
+  r = RunClothfit(dir, {"export", "--params", params, "--out", glb});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  ExpectValid(glb);
+}
+
+TEST(GltfExport, BadInputIsExitTwo) {
+  const fs::path dir = testing_util::FreshTestDir("export_");
+  const std::string out = (dir / "o.gltf").string();
+  testing_util::ExpectBadInput(
+      dir, {"export", "--preset", "velvet", "--out", (dir / "o.obj").string()},
+      {".gltf or .glb"});
+  testing_util::ExpectBadInput(
+      dir, {"export", "--preset", "velvet", "--params", "x.json", "--out", out},
+      {"exactly one"});
+  testing_util::ExpectBadInput(
+      dir, {"export", "--format", "usd", "--preset", "velvet", "--out", out},
+      {"--format", "usd"});
+  testing_util::WriteText(dir / "holes.json",
+                          "{\"model\": \"holes\", \"thickness_texels\": 1}");
+  testing_util::ExpectBadInput(
+      dir, {"export", "--params", (dir / "holes.json").string(), "--out", out},
+      {"holes", "glTF"});
+}
+
+}  // namespace
+}  // namespace clothfit
