@@ -13,7 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-scipy  # the bench's peer (benchmarks/peer/); optional at run time
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (fuzz/)
-  nodejs npm  # the tests' web tools (web/: the Khronos glTF validator)
+  chromium  # headless browser tests (tests/browser_render_test.cc)
 )
 
 missing=()
@@ -21,6 +21,12 @@ for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
     missing+=("$p")
 done
+# Node.js and npm for the tests' web tools (web/: the Khronos glTF
+# validator, three.js): Debian's, unless a node and npm are there already
+# (a NodeSource nodejs bundles npm and conflicts with Debian's npm).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
+fi
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}"
   SUDO=""
