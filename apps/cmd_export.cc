@@ -9,33 +9,55 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "export/glsl.h"
 #include "export/gltf.h"
 #include "fitting/sheen_conversion.h"
+#include "io/atomic_file.h"
 #include "io/text_util.h"
 
 namespace clothfit {
+
+namespace {
+
+// --format glsl: the model's GLSL with its parameters (export/glsl.h).
+int ExportGlsl(const CommandArgs& args) {
+  if (args.Has("data")) args.Fail("--format glsl exports a model, not a table");
+  const std::string out = args.Required("out");
+  CheckWritable(out);
+  const ParamFile file = LoadModelOption(args);
+  WriteFileAtomically(out, GlslSource(file.params));
+  std::printf("wrote %s (%s model: clothfit_f, clothfit_rho)\n", out.c_str(),
+              ModelName(file.params));
+  return 0;
+}
+
+}  // namespace
 
 int RunExport(int argc, char** argv) {
   CommandArgs args(
       "export",
       "clothfit export --format gltf (--params P.json | --preset NAME | "
-      "--data T.csv) --out FILE.gltf|FILE.glb",
+      "--data T.csv) --out FILE.gltf|FILE.glb\n       clothfit export "
+      "--format glsl (--params P.json | --preset NAME) --out FILE.glsl",
       "Writes a glTF 2.0 cloth (a draped sheet) whose material - the "
       "metallic-roughness base (metallic 0)\nunder KHR_materials_sheen - is "
       "fitted to the source: a parameter file's or a preset's reflectance\n"
       "on a grid of 108 x 108 directions (rho = f cos), or a measured table. "
       "The error the conversion\nleaves is printed and stored in the "
-      "material's extras (docs/renderer.md).");
-  args.Option("format", "F", "gltf", "gltf");
+      "material's extras (docs/renderer.md).\nglsl: GLSL ES 3.00 functions "
+      "clothfit_f and clothfit_rho of a thread, cloth, lafortune or slab\n"
+      "model with its parameters as constants.");
+  args.Option("format", "F", "gltf or glsl", "gltf");
   args.Option("params", "P.json", "a fitted model (any reflection model)");
   args.Option("preset", "NAME", "a preset fabric instead");
   args.Option("data", "T.csv", "a measured table instead");
   args.Option("out", "FILE.gltf", ".gltf (+ .bin beside it) or .glb");
   args.Option("grid", "N", "quads per side of the sheet", "48");
   if (!args.Parse(argc, argv, 2)) return 0;
-  if (args.Get("format") != "gltf") {
-    args.Fail("option '--format': expected gltf, got '" + args.Get("format") +
-              "'");
+  const std::string format = args.Get("format");
+  if (format == "glsl") return ExportGlsl(args);
+  if (format != "gltf") {
+    args.Fail("option '--format': expected gltf or glsl, got '" + format + "'");
   }
   const std::string out = args.Required("out");
   if (!text_util::HasExtension(out, ".gltf") &&

@@ -17,6 +17,7 @@
 
 #include "io/params_json.h"
 #include "render/sphere.h"
+#include "tests/browser_test_util.h"
 #include "tests/cli_test_util.h"
 #include "tests/direction_util.h"
 #include "tests/io_test_util.h"
@@ -28,65 +29,8 @@ namespace fs = std::filesystem;
 using testing_util::Quote;
 using testing_util::ReadText;
 
-const std::string kWeb = std::string(CLOTHFIT_SOURCE_DIR) + "/web";
-
-std::vector<uint8_t> DecodeBase64(const std::string& text) {
-  auto value = [](char c) -> int {
-    if (c >= 'A' && c <= 'Z') return c - 'A';
-    if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-    if (c >= '0' && c <= '9') return c - '0' + 52;
-    if (c == '+') return 62;
-    if (c == '/') return 63;
-    return -1;
-  };
-  std::vector<uint8_t> out;
-  int bits = 0, buffer = 0;
-  for (char c : text) {
-    const int v = value(c);
-    if (v < 0) continue;  // '=' padding
-    buffer = (buffer << 6) | v;
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<uint8_t>((buffer >> bits) & 0xff));
-    }
-  }
-  return out;
-}
-
-// A local HTTP server (python3 -m http.server) on `root`, stopped with the
-// object: ES modules and fetch need http:, not file:.
-class LocalServer {
- public:
-  explicit LocalServer(const fs::path& root) : root_(root) {
-    const std::string log = (root / "_server.txt").string();
-    std::system(("cd " + Quote(root.string()) +
-                 " && (python3 -u -m http.server 0 --bind 127.0.0.1 >" +
-                 Quote(log) + " 2>&1 & echo $! >_server.pid)")
-                    .c_str());
-    for (int k = 0; k < 100 && port_ == 0; ++k) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      const std::string text = ReadText(log);
-      const size_t at = text.find(" port ");
-      if (at != std::string::npos) port_ = std::atoi(text.c_str() + at + 6);
-    }
-  }
-  ~LocalServer() {
-    const std::string pid = ReadText(root_ / "_server.pid");
-    if (!pid.empty()) std::system(("kill " + pid).c_str());
-  }
-  int port() const { return port_; }
-
- private:
-  fs::path root_;
-  int port_ = 0;
-};
-
 TEST(BrowserRender, ThreeJsRendersTheExportedSheenAsClothfitDoes) {
-  ASSERT_TRUE(fs::exists(kWeb + "/node_modules/three"))
-      << "three.js is missing: run scripts/setup.sh (npm ci in web/)";
-  const char* chromium = "/usr/bin/chromium";
-  if (!fs::exists(chromium)) {
+  if (!testing_util::BrowserAvailable()) {
     GTEST_SKIP() << "no browser: /usr/bin/chromium is not installed "
                     "(scripts/setup.sh installs Debian's chromium)";
   }
@@ -97,37 +41,21 @@ TEST(BrowserRender, ThreeJsRendersTheExportedSheenAsClothfitDoes) {
       dir, {"export", "--params", (dir / "s.json").string(), "--out",
             (dir / "s.glb").string()});
   ASSERT_EQ(r.status, 0) << testing_util::Describe(r);
-  fs::copy_file(kWeb + "/render_gltf.html", dir / "render_gltf.html");
-  fs::create_directory_symlink(kWeb + "/node_modules", dir / "node_modules");
-  const LocalServer server(dir);
+  testing_util::ServeWebPage(dir, "render_gltf.html");
+  const testing_util::LocalServer server(dir);
   ASSERT_GT(server.port(), 0) << ReadText(dir / "_server.txt");
 
   constexpr int kSize = 128;
   const glm::dvec3 light = glm::normalize(glm::dvec3(0.5, 0.4, 0.7));
-  const std::string url =
-      "http://127.0.0.1:" + std::to_string(server.port()) +
-      "/render_gltf.html?glb=s.glb&size=" + std::to_string(kSize) +
-      "&lx=" + std::to_string(light.x) + "&ly=" + std::to_string(light.y) +
-      "&lz=" + std::to_string(light.z) + "&e=1";
-  const std::string dom = (dir / "dom.html").string();
-  const std::string command =
-      std::string(chromium) +
-      " --headless=new --no-sandbox --disable-dev-shm-usage "
-      "--use-angle=swiftshader "
-      "--enable-unsafe-swiftshader --virtual-time-budget=60000 --dump-dom " +
-      Quote(url) + " >" + Quote(dom) + " 2>" + Quote(dom + ".err");
-  ASSERT_EQ(std::system(command.c_str()), 0) << ReadText(dom + ".err");
-  const std::string text = ReadText(dom);
-  const size_t at = text.find("<pre id=\"out\">");
-  ASSERT_NE(at, std::string::npos) << text;
-  const std::string result =
-      text.substr(at + 14, text.find("</pre>", at) - at - 14);
-  ASSERT_EQ(result.rfind("OK ", 0), 0u) << result.substr(0, 300);
-  const std::vector<uint8_t> bytes =
-      DecodeBase64(result.substr(result.find(' ', 3) + 1));
-  ASSERT_EQ(bytes.size(), size_t(kSize) * kSize * 3 * sizeof(float));
-  std::vector<float> three(bytes.size() / sizeof(float));
-  std::memcpy(three.data(), bytes.data(), bytes.size());
+  const std::string dom = testing_util::DumpDom(
+      server.Url("render_gltf.html?glb=s.glb&size=" + std::to_string(kSize) +
+                 "&lx=" + std::to_string(light.x) +
+                 "&ly=" + std::to_string(light.y) +
+                 "&lz=" + std::to_string(light.z) + "&e=1"),
+      dir);
+  const std::vector<float> three =
+      testing_util::FloatsOf(testing_util::PreText(dom, "out"));
+  ASSERT_EQ(three.size(), size_t(kSize) * kSize * 3);
 
   const PreviewImage ours = RenderSphere(sheen, light, 1.0, kSize);
   double peak = 0.0;

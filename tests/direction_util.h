@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "models/lafortune.h"
 #include "models/math.h"
 #include "models/presets.h"
 #include "models/sheen.h"
@@ -36,6 +37,25 @@ inline SheenParams Velvety() {
   p.sheen_color = glm::dvec3(0.7, 0.5, 0.4);
   p.sheen_roughness = 0.35;
   return p;
+}
+
+// Two lobes (a forward lobe, anisotropic, and a retro-reflective one) that
+// differ per channel, on a tilted texel.
+inline LafortuneModel TiltedLafortune() {
+  LafortuneModel m;
+  m.normal = glm::normalize(glm::dvec3(0.2, -0.1, 1.0));
+  m.params.diffuse = glm::dvec3(0.05, 0.08, 0.1);
+  LafortuneLobe forward;
+  forward.cx = glm::dvec3(-0.9, -0.85, -0.8);
+  forward.cy = glm::dvec3(-0.6, -0.6, -0.5);
+  forward.cz = glm::dvec3(0.8, 0.75, 0.7);
+  forward.n = glm::dvec3(20.0, 18.0, 16.0);
+  LafortuneLobe retro;
+  retro.cx = retro.cy = glm::dvec3(0.6);
+  retro.cz = glm::dvec3(0.5);
+  retro.n = glm::dvec3(4.0);
+  m.params.lobes = {forward, retro};
+  return m;
 }
 
 }  // namespace testing_util

@@ -29,6 +29,7 @@ namespace {
 
 using testing_util::Dir;
 using testing_util::Preset;
+using testing_util::TiltedLafortune;
 
 using testing_util::BinIntegrals;
 using testing_util::Pearson;
@@ -42,25 +43,6 @@ ClothParams TurnedLinen() {
   c.threads[0].offsets_deg = {-25.0, 0.0, 25.0};
   c.diffuse = glm::dvec3(0.05, 0.1, 0.02);
   return c;
-}
-
-// Two lobes (a forward lobe, anisotropic, and a retro-reflective one) that
-// differ per channel, on a tilted texel.
-LafortuneModel TiltedLafortune() {
-  LafortuneModel m;
-  m.normal = glm::normalize(glm::dvec3(0.2, -0.1, 1.0));
-  m.params.diffuse = glm::dvec3(0.05, 0.08, 0.1);
-  LafortuneLobe forward;
-  forward.cx = glm::dvec3(-0.9, -0.85, -0.8);
-  forward.cy = glm::dvec3(-0.6, -0.6, -0.5);
-  forward.cz = glm::dvec3(0.8, 0.75, 0.7);
-  forward.n = glm::dvec3(20.0, 18.0, 16.0);
-  LafortuneLobe retro;
-  retro.cx = retro.cy = glm::dvec3(0.6);
-  retro.cz = glm::dvec3(0.5);
-  retro.n = glm::dvec3(4.0);
-  m.params.lobes = {forward, retro};
-  return m;
 }
 
 SlabParams Slab() {

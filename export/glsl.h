@@ -1,0 +1,24 @@
+// GLSL ES 3.00 of a fitted model (`clothfit export --format glsl`): the
+// model's functions (export/glsl/*.glsl, the one second copy of the
+// formulas of models/, kept equal by tests/glsl_browser_test.cc) with the
+// parameters as constants, ready to paste into a renderer's shader:
+//
+//   vec3 clothfit_f(vec3 wi, vec3 wo);    // the BSDF f, 1/sr, per channel
+//   vec3 clothfit_rho(vec3 wi, vec3 wo);  // rho = f |wi.z|
+//   vec3 clothfit_direct_transmittance(vec3 w);  // slab only
+//
+// wi, wo unit vectors in the surface frame (normal +z, warp +x; a thread:
+// the thread frame, tangent +x), pointing away from the surface.
+#pragma once
+
+#include <string>
+
+#include "models/evaluate.h"
+
+namespace clothfit {
+
+// Throws InputError for a model without a GLSL form (holes, sheen: the
+// glTF export gives the sheen to renderers).
+std::string GlslSource(const ModelParams& model);
+
+}  // namespace clothfit
