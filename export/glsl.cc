@@ -10,6 +10,9 @@
 namespace clothfit {
 namespace {
 
+// Most texels of a holes tile in GLSL constants (73 floats each).
+constexpr size_t kMaxGlslTileTexels = 16;
+
 // A float literal: 9 significant digits (float's round trip), with a
 // decimal point.
 std::string F(double x) {
@@ -135,10 +138,50 @@ std::string GlslSource(const ModelParams& model) {
            "  return cf_slab_bsdf(wi, wo) * abs(wi.z);\n}\n"
            "vec3 clothfit_direct_transmittance(vec3 w) {\n"
            "  return cf_slab_direct_transmittance(w);\n}\n";
+  } else if (const auto* h = std::get_if<HolesModel>(&model)) {
+    if (!h->tile) {
+      throw InputError(
+          "a holes model needs its mask's tile (clothfit holes tile) for "
+          "its GLSL");
+    }
+    const LevelTexels& l = h->tile->texels;
+    if (l.counts.size() > kMaxGlslTileTexels) {
+      throw InputError("the holes tile has " + std::to_string(l.counts.size()) +
+                       " texels; its GLSL takes at most " +
+                       std::to_string(kMaxGlslTileTexels) +
+                       " (store a higher level: clothfit holes tile --level)");
+    }
+    const bool extension =
+        h->tile->method == HoleMethod::kExtension && !l.distances.empty();
+    std::vector<std::string> texels, counts, runs;
+    for (size_t i = 0; i < l.counts.size(); ++i) {
+      texels.push_back(F(l.counts[i].texels));
+      for (double c : l.counts[i].counts) counts.push_back(F(c));
+      if (extension) {
+        for (double c : l.distances[i].cumulative) runs.push_back(F(c));
+      }
+    }
+    out << "const float CF_THICKNESS = " << F(h->params.thickness_texels)
+        << ";\n"
+        << "const vec3 CF_WALL_COLOR = " << V(h->params.wall_color) << ";\n"
+        << "const int CF_TILE = " << l.counts.size() << ";\n"
+        << "const float CF_AREA = " << F(l.area) << ";\n"
+        << "const bool CF_EXTENSION = " << (extension ? "true" : "false")
+        << ";\n"
+        << Array("float", "CF_TEXELS", texels, "1.0")
+        << Array("float", "CF_COUNTS", counts, "0.0")
+        << Array("float", "CF_RUNS", runs, "0.0") << "\n"
+        << glsl_sources::kHoles << "\n"
+        << "vec3 clothfit_transmittance(vec3 wo) {\n"
+           "  return cf_holes_transmittance(wo);\n}\n"
+           "// A holes layer has no BSDF: all its light passes straight.\n"
+           "vec3 clothfit_f(vec3 wi, vec3 wo) { return vec3(0.0); }\n"
+           "vec3 clothfit_rho(vec3 wi, vec3 wo) { return vec3(0.0); }\n";
   } else {
     throw InputError(std::string("a ") + ModelName(model) +
-                     " model has no GLSL export yet (thread, cloth, "
-                     "lafortune and slab have)");
+                     " model has no GLSL export (thread, cloth, lafortune, "
+                     "slab and holes have; the glTF export gives a sheen to "
+                     "renderers)");
   }
   return out.str();
 }

@@ -6,6 +6,7 @@
 //   vec3 clothfit_f(vec3 wi, vec3 wo);    // the BSDF f, 1/sr, per channel
 //   vec3 clothfit_rho(vec3 wi, vec3 wo);  // rho = f |wi.z|
 //   vec3 clothfit_direct_transmittance(vec3 w);  // slab only
+//   vec3 clothfit_transmittance(vec3 wo);  // holes only (f = rho = 0)
 //
 // wi, wo unit vectors in the surface frame (normal +z, warp +x; a thread:
 // the thread frame, tangent +x), pointing away from the surface.
@@ -17,8 +18,9 @@
 
 namespace clothfit {
 
-// Throws InputError for a model without a GLSL form (holes, sheen: the
-// glTF export gives the sheen to renderers).
+// Throws InputError for a model without a GLSL form (sheen: the glTF
+// export gives the sheen to renderers), a holes model without its tile or
+// with more than 16 texels in it.
 std::string GlslSource(const ModelParams& model);
 
 }  // namespace clothfit

@@ -9,6 +9,7 @@ extern const char* const kThread;
 extern const char* const kCloth;
 extern const char* const kLafortune;
 extern const char* const kSlab;
+extern const char* const kHoles;
 
 }  // namespace glsl_sources
 }  // namespace clothfit

@@ -4,6 +4,7 @@
 #include <initializer_list>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <type_traits>
@@ -316,7 +317,11 @@ std::string FormatParamFile(const ParamFile& file) {
     WriteParamKeys(h->params, &j);
     if (!file.holes.path.empty()) j["mask"] = file.holes.path;
     j["threshold"] = file.holes.threshold;
-    if (file.holes.method) j["method"] = HoleMethodName(*file.holes.method);
+    // The method the tile was made for, when the file names none: the
+    // reader evaluates the tile with the file's method.
+    std::optional<HoleMethod> method = file.holes.method;
+    if (!method && h->tile) method = h->tile->method;
+    if (method) j["method"] = HoleMethodName(*method);
     if (h->tile && h->tile->texels.counts.size() <= kMaxStoredTileTexels) {
       j["tile"] = io_internal::FormatHolesTile(*h->tile);
     }

@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "api/material.h"
+#include "holes/hole_texture.h"
 #include "io/params_json.h"
 #include "tests/browser_test_util.h"
 #include "tests/cli_test_util.h"
@@ -70,6 +72,20 @@ LafortuneModel TiltedLafortuneWithTable() {
   return m;
 }
 
+// A holed layer of thickness 1.3 over an 8 x 8 mask, with the tile of
+// `level` (1: 4 x 4 texels) evaluated by `method`.
+HolesModel HolesWithTile(HoleMethod method, int level) {
+  const Mask mask =
+      MaskFromRows({"##..#.#.", "#...#..#", "........", "###.##.#", "#.#.#..#",
+                    "...#...#", "#....#..", "##.#.##."});
+  HolesModel model;
+  model.params.thickness_texels = 1.3;
+  model.params.wall_color = glm::dvec3(0.1, 0.3, 0.5);
+  model.tile = std::make_shared<const HolesTile>(HolesTileOf(
+      AnalyzeMask(mask, method == HoleMethod::kExtension), method, level));
+  return model;
+}
+
 TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
   if (!testing_util::BrowserAvailable()) {
     GTEST_SKIP() << "no browser: /usr/bin/chromium is not installed "
@@ -96,7 +112,11 @@ TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
       {"lafortune", TiltedLafortuneWithTable(), Domain::kUpper},
       {"slab", slab, Domain::kSphere},
       {"thin_slab", thin, Domain::kOpposite},
-      {"slab_direct", slab, Domain::kSphere, "direct"}};
+      {"slab_direct", slab, Domain::kSphere, "direct"},
+      {"holes", HolesWithTile(HoleMethod::kExtension, kTopLevel),
+       Domain::kSphere, "transmittance"},
+      {"holes_level1", HolesWithTile(HoleMethod::kAlgorithm31, 1),
+       Domain::kSphere, "transmittance"}};
 
   const fs::path dir = testing_util::FreshTestDir("glsl_browser_");
   std::string manifest = "[";
@@ -131,14 +151,20 @@ TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
         testing_util::PreText(dom, "out" + std::to_string(j)));
     const size_t n = pairs[j].size() / 2;
     ASSERT_EQ(gpu.size(), 3 * n) << job.name;
-    const Material m = Material::FromParams(job.model);
+    // F for the BSDF jobs (a holes model's F is 0: it has none).
+    const Material m = Material::FromParams(
+        job.fn == "f" ? job.model : ModelParams(SlabParams()));
     std::vector<glm::dvec3> ref(n);
     double peak = 0.0;
     for (size_t k = 0; k < n; ++k) {
       const glm::dvec3 wi(pairs[j][2 * k]), wo(pairs[j][2 * k + 1]);
-      ref[k] = job.fn == "direct" ? SlabDirectTransmittance(
-                                        std::get<SlabParams>(job.model), wo)
-                                  : m.F(wi, wo);
+      if (job.fn == "direct") {
+        ref[k] = SlabDirectTransmittance(std::get<SlabParams>(job.model), wo);
+      } else if (job.fn == "transmittance") {
+        ref[k] = Transmittance(std::get<HolesModel>(job.model), wo);
+      } else {
+        ref[k] = m.F(wi, wo);
+      }
       for (int c = 0; c < 3; ++c) peak = std::max(peak, std::abs(ref[k][c]));
     }
     ASSERT_GT(peak, 0.0) << job.name;

@@ -206,6 +206,21 @@ TEST(HolesParamsTest, TileInTheFileEvaluatesAsTheMask) {
   }
 }
 
+// A file written without a method records the tile's, so that the tile
+// reads back with the method it was made for.
+TEST(HolesParamsTest, FileWithoutAMethodKeepsTheTilesMethod) {
+  const Mask mask = MaskFromRows({"#..#", "....", "##.#", "...."});
+  HolesModel model;
+  model.tile = std::make_shared<const HolesTile>(HolesTileOf(
+      AnalyzeMask(mask, false), HoleMethod::kAlgorithm31, kTopLevel));
+  const ParamFile back =
+      ParseParamFile(FormatParamFile(ParamFile(model)), "m.json");
+  EXPECT_EQ(back.holes.method, HoleMethod::kAlgorithm31);
+  ASSERT_NE(std::get<HolesModel>(back.params).tile, nullptr);
+  EXPECT_EQ(std::get<HolesModel>(back.params).tile->method,
+            HoleMethod::kAlgorithm31);
+}
+
 TEST(HolesParamsTest, DamagedTilesNameTheKey) {
   const std::string head =
       "{\"model\": \"holes\", \"thickness_texels\": 1, \"method\": "
