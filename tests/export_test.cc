@@ -158,6 +158,14 @@ TEST(GltfExport, CliWritesFilesTheValidatorAccepts) {
   r = RunClothfit(dir, {"export", "--params", params, "--out", glb});
   ASSERT_EQ(r.status, 0) << Describe(r);
   ExpectValid(glb);
+  // A CUReT fabric's measured table.
+  const std::string linen = (dir / "linen.gltf").string();
+  r = RunClothfit(
+      dir, {"export", "--data",
+            std::string(CLOTHFIT_SHARED_DIR) + "/data/curet/curet_44_linen.csv",
+            "--out", linen});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  ExpectValid(linen);
 }
 
 TEST(GltfExport, BadInputIsExitTwo) {
