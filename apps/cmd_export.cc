@@ -4,6 +4,7 @@
 // fitted to the source (fitting/sheen_conversion.h); the error the
 // conversion leaves is printed and stored in the material's extras.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -13,6 +14,8 @@
 #include "export/gltf.h"
 #include "fitting/sheen_conversion.h"
 #include "io/atomic_file.h"
+#include "io/lafortune_mipmap.h"
+#include "io/param_mipmap.h"
 #include "io/text_util.h"
 
 namespace clothfit {
@@ -24,6 +27,50 @@ int ExportGlsl(const CommandArgs& args) {
   if (args.Has("data")) args.Fail("--format glsl exports a model, not a table");
   const std::string out = args.Required("out");
   CheckWritable(out);
+  const std::string filter_name = args.Get("filter");
+  TexelFilter filter = TexelFilter::kNearest;
+  if (filter_name == "bilinear") {
+    filter = TexelFilter::kBilinear;
+  } else if (filter_name == "trilinear") {
+    filter = TexelFilter::kTrilinear;
+  } else if (filter_name != "nearest") {
+    args.Fail(
+        "option '--filter': expected nearest, bilinear or trilinear, got '" +
+        filter_name + "'");
+  }
+  if (args.Has("params") &&
+      text_util::HasExtension(args.Get("params"), ".exr")) {
+    // A texture map: the GLSL and its parameter texture array beside it.
+    const ParamMipmap mipmap = ReadParamMipmap(args.Get("params"));
+    std::vector<LafortuneTexelMap> levels;
+    for (size_t l = 0; l < mipmap.levels.size(); ++l) {
+      LafortuneTexelMap level;
+      level.width = mipmap.levels[l].width;
+      level.height = mipmap.levels[l].height;
+      level.texels = LevelFromParamMipmap(mipmap, static_cast<int>(l));
+      levels.push_back(std::move(level));
+    }
+    const std::vector<glm::dvec3> views =
+        levels.empty() || levels[0].texels.empty()
+            ? std::vector<glm::dvec3>()
+            : levels[0].texels[0].lut.views;
+    const GlslMap map = GlslMapSource(levels, views, filter);
+    const std::filesystem::path out_path(out);
+    const std::string bin =
+        (out_path.parent_path() / (out_path.stem().string() + ".params.bin"))
+            .string();
+    CheckOutputsDistinct({{"--out", out}, {"the parameters", bin}},
+                         {{"--params", args.Get("params")}});
+    WriteFileAtomically(
+        bin, std::string(reinterpret_cast<const char*>(map.texels.data()),
+                         map.texels.size() * sizeof(float)));
+    WriteFileAtomically(out, map.source);
+    std::printf(
+        "wrote %s (a %zu-level texture map: clothfit_f_map, clothfit_rho_map)\n"
+        "wrote %s (the parameter array: %d layers of RGBA float32)\n",
+        out.c_str(), levels.size(), bin.c_str(), map.layers);
+    return 0;
+  }
   const ParamFile file = LoadModelOption(args);
   WriteFileAtomically(out, GlslSource(file.params));
   std::printf("wrote %s (%s model: clothfit_f, clothfit_rho)\n", out.c_str(),
@@ -53,6 +100,9 @@ int RunExport(int argc, char** argv) {
   args.Option("data", "T.csv", "a measured table instead");
   args.Option("out", "FILE.gltf", ".gltf (+ .bin beside it) or .glb");
   args.Option("grid", "N", "quads per side of the sheet", "48");
+  args.Option("filter", "F",
+              "glsl of a texture map: nearest, bilinear or trilinear",
+              "nearest");
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string format = args.Get("format");
   if (format == "glsl") return ExportGlsl(args);
@@ -83,8 +133,9 @@ int RunExport(int argc, char** argv) {
   } else {
     if (args.Has("params") &&
         text_util::HasExtension(args.Get("params"), ".exr")) {
-      args.Fail(args.Get("params") +
-                ": texture maps are not exported yet (only one material)");
+      args.Fail(
+          args.Get("params") +
+          ": texture maps have no glTF export yet (--format glsl has one)");
     }
     const ParamFile file = LoadModelOption(args);
     source = args.Has("params") ? args.Get("params") : args.Get("preset");

@@ -1,5 +1,6 @@
 #include "export/glsl.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <vector>
@@ -184,6 +185,69 @@ std::string GlslSource(const ModelParams& model) {
                      "renderers)");
   }
   return out.str();
+}
+
+GlslMap GlslMapSource(const std::vector<LafortuneTexelMap>& levels,
+                      const std::vector<glm::dvec3>& views,
+                      TexelFilter filter) {
+  if (levels.empty()) throw InputError("a texture map needs a level");
+  size_t lobes = 0;
+  for (const LafortuneTexelMap& level : levels) {
+    for (const LafortuneModel& m : level.texels) {
+      lobes = std::max(lobes, m.params.lobes.size());
+    }
+  }
+  GlslMap map;
+  map.layers = static_cast<int>(2 + 4 * lobes + views.size());
+  std::vector<std::string> widths, heights, view_items;
+  for (const LafortuneTexelMap& level : levels) {
+    widths.push_back(std::to_string(level.width));
+    heights.push_back(std::to_string(level.height));
+    std::vector<std::vector<glm::dvec3>> layer(map.layers);
+    for (const LafortuneModel& m : level.texels) {
+      layer[0].push_back(m.params.diffuse);
+      layer[1].push_back(m.normal);
+      for (size_t k = 0; k < lobes; ++k) {
+        const LafortuneLobe zero{glm::dvec3(0.0), glm::dvec3(0.0),
+                                 glm::dvec3(0.0), glm::dvec3(1.0)};
+        const LafortuneLobe& lobe =
+            k < m.params.lobes.size() ? m.params.lobes[k] : zero;
+        layer[2 + 4 * k].push_back(lobe.cx);
+        layer[3 + 4 * k].push_back(lobe.cy);
+        layer[4 + 4 * k].push_back(lobe.cz);
+        layer[5 + 4 * k].push_back(lobe.n);
+      }
+      for (size_t v = 0; v < views.size(); ++v) {
+        layer[2 + 4 * lobes + v].push_back(
+            v < m.lut.color.size() ? m.lut.color[v] : glm::dvec3(1.0));
+      }
+    }
+    for (const std::vector<glm::dvec3>& texels : layer) {
+      for (const glm::dvec3& x : texels) {
+        for (int c = 0; c < 3; ++c) map.texels.push_back(float(x[c]));
+        map.texels.push_back(1.0f);
+      }
+    }
+  }
+  for (const glm::dvec3& v : views) view_items.push_back(V(v));
+  std::ostringstream out;
+  out << kHeader << "precision highp sampler2DArray;\n"
+      << glsl_sources::kCommon << "\n"
+      << "const int CF_LEVELS = " << levels.size() << ";\n"
+      << "const int CF_LAYERS = " << map.layers << ";\n"
+      << "const int CF_LOBES = " << lobes << ";\n"
+      << "const int CF_VIEWS = " << views.size() << ";\n"
+      << "const int CF_FILTER = " << static_cast<int>(filter) << ";\n"
+      << Array("int", "CF_LEVEL_WIDTH", widths, "1")
+      << Array("int", "CF_LEVEL_HEIGHT", heights, "1")
+      << Array("vec3", "CF_VIEW", view_items, "vec3(0.0, 0.0, 1.0)") << "\n"
+      << glsl_sources::kLafortuneMap << "\n"
+      << "vec3 clothfit_rho_map(vec2 st, float lod, vec3 wi, vec3 wo) {\n"
+         "  return cf_map_rho(st, lod, wi, wo);\n}\n"
+         "vec3 clothfit_f_map(vec2 st, float lod, vec3 wi, vec3 wo) {\n"
+         "  return cf_map_rho(st, lod, wi, wo) / max(wi.z, 1e-7);\n}\n";
+  map.source = out.str();
+  return map;
 }
 
 }  // namespace clothfit

@@ -13,7 +13,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "api/material.h"
+#include "io/lafortune_mipmap.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
@@ -22,5 +25,19 @@ namespace clothfit {
 // export gives the sheen to renderers), a holes model without its tile or
 // with more than 16 texels in it.
 std::string GlslSource(const ModelParams& model);
+
+// A Lafortune parameter mip map: GLSL whose parameters live in a
+// mip-mapped texture array the renderer binds (export/glsl/
+// lafortune_map.glsl gives the layout), and that array's texels: level by
+// level, layer by layer, row by row (row 0 of the map first), RGBA
+// float32. Entry points clothfit_f_map / clothfit_rho_map(vec2 st, float
+// lod, vec3 wi, vec3 wo), filtered as `filter` (api/material.h).
+struct GlslMap {
+  std::string source;
+  std::vector<float> texels;
+  int layers = 0;
+};
+GlslMap GlslMapSource(const std::vector<LafortuneTexelMap>& levels,
+                      const std::vector<glm::dvec3>& views, TexelFilter filter);
 
 }  // namespace clothfit

@@ -10,6 +10,7 @@ extern const char* const kCloth;
 extern const char* const kLafortune;
 extern const char* const kSlab;
 extern const char* const kHoles;
+extern const char* const kLafortuneMap;
 
 }  // namespace glsl_sources
 }  // namespace clothfit

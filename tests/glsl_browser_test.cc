@@ -14,6 +14,8 @@
 
 #include "api/material.h"
 #include "holes/hole_texture.h"
+#include "io/lafortune_mipmap.h"
+#include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "tests/browser_test_util.h"
 #include "tests/cli_test_util.h"
@@ -187,6 +189,105 @@ TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
                            << ", " << gpu[3 * worst_k + 2] << ") C++ ("
                            << ref[worst_k].x << ", " << ref[worst_k].y << ", "
                            << ref[worst_k].z << ")";
+  }
+}
+
+// A Lafortune texture map (2 x 2 texels over 1 x 1, tilted texels with two
+// lobes and a 4-view lookup table) exported with each filter and evaluated
+// on the GPU at random (s, t, lod): the values of Material::Load(map,
+// filter).
+TEST(GlslBrowser, TextureMapsMatchTheFilteredMaterialOnTheGpu) {
+  if (!testing_util::BrowserAvailable()) {
+    GTEST_SKIP() << "no browser: /usr/bin/chromium is not installed "
+                    "(scripts/setup.sh installs Debian's chromium)";
+  }
+  const fs::path dir = testing_util::FreshTestDir("glsl_browser_");
+  std::vector<glm::dvec3> views;
+  for (int k = 0; k < 4; ++k) views.push_back(Dir(15.0 + 20.0 * k, 90.0 * k));
+  LafortuneTexelMap base, top;
+  base.width = base.height = 2;
+  for (int i = 0; i < 4; ++i) {
+    LafortuneModel m = testing_util::TiltedLafortune();
+    m.normal =
+        glm::normalize(glm::dvec3(0.3 * (i % 2) - 0.1, 0.2 * (i / 2), 1));
+    m.params.lobes[0].n *= 0.5 + 0.5 * i;
+    m.params.diffuse *= 1.0 + i;
+    m.lut.views = views;
+    for (int k = 0; k < 4; ++k) {
+      m.lut.color.push_back(glm::dvec3(0.8 + 0.1 * k, 1.0 - 0.05 * i, 1.0));
+      m.lut.alpha.push_back(1.0);
+    }
+    base.texels.push_back(m);
+  }
+  top.width = top.height = 1;
+  LafortuneModel t = base.texels[1];
+  t.params.lobes.resize(1);  // fewer lobes than level 0
+  top.texels.push_back(t);
+  const std::string path = (dir / "map.exr").string();
+  WriteParamMipmap(ToParamMipmap({base, top}, views), path);
+
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::vector<glm::vec3> pairs = Pairs(Domain::kUpper, 77);
+  std::vector<glm::vec3> uv;
+  for (size_t k = 0; k < pairs.size() / 2; ++k) {
+    uv.push_back(glm::vec3(u(rng), u(rng), 1.2 * u(rng)));
+  }
+  std::ofstream(dir / "map.dirs", std::ios::binary)
+      .write(reinterpret_cast<const char*>(pairs.data()),
+             pairs.size() * sizeof(glm::vec3));
+  std::ofstream(dir / "map.uv", std::ios::binary)
+      .write(reinterpret_cast<const char*>(uv.data()),
+             uv.size() * sizeof(glm::vec3));
+  const std::vector<std::pair<std::string, TexelFilter>> filters = {
+      {"nearest", TexelFilter::kNearest},
+      {"bilinear", TexelFilter::kBilinear},
+      {"trilinear", TexelFilter::kTrilinear}};
+  std::string manifest = "[";
+  for (size_t j = 0; j < filters.size(); ++j) {
+    const std::string name = "map_" + filters[j].first;
+    const testing_util::RunResult r = testing_util::RunClothfit(
+        dir, {"export", "--format", "glsl", "--params", path, "--filter",
+              filters[j].first, "--out", (dir / (name + ".glsl")).string()});
+    ASSERT_EQ(r.status, 0) << testing_util::Describe(r);
+    ASSERT_TRUE(fs::exists(dir / (name + ".params.bin")));
+    manifest += std::string(j ? "," : "") + "{\"glsl\": \"" + name +
+                ".glsl\", \"dirs\": \"map.dirs\", \"fn\": \"map\", "
+                "\"params\": \"" +
+                name +
+                ".params.bin\", \"layers\": " + std::to_string(2 + 4 * 2 + 4) +
+                ", \"sizes\": [[2, 2], [1, 1]], \"uv\": \"map.uv\"}";
+  }
+  testing_util::WriteText(dir / "jobs.json", manifest + "]");
+  testing_util::ServeWebPage(dir, "eval_glsl.html");
+  const testing_util::LocalServer server(dir);
+  ASSERT_GT(server.port(), 0);
+  const std::string dom = testing_util::DumpDom(
+      server.Url("eval_glsl.html?manifest=jobs.json"), dir);
+  ASSERT_EQ(testing_util::PreText(dom, "done"), "DONE") << dom.substr(0, 500);
+  for (size_t j = 0; j < filters.size(); ++j) {
+    const std::vector<float> gpu = testing_util::FloatsOf(
+        testing_util::PreText(dom, "out" + std::to_string(j)));
+    const size_t n = pairs.size() / 2;
+    ASSERT_EQ(gpu.size(), 3 * n) << filters[j].first;
+    const Material m = Material::Load(path, filters[j].second);
+    std::vector<glm::dvec3> ref(n);
+    double peak = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+      ref[k] = m.F(glm::dvec3(pairs[2 * k]), glm::dvec3(pairs[2 * k + 1]),
+                   uv[k].x, uv[k].y, uv[k].z);
+      for (int c = 0; c < 3; ++c) peak = std::max(peak, std::abs(ref[k][c]));
+    }
+    double worst = 0.0;
+    for (size_t k = 0; k < n; ++k) {
+      for (int c = 0; c < 3; ++c) {
+        worst = std::max(worst, std::abs(gpu[3 * k + c] - ref[k][c]) /
+                                    std::max(std::abs(ref[k][c]), 1e-3 * peak));
+      }
+    }
+    std::printf("map, %-9s largest relative difference %.3g over %zu pairs\n",
+                filters[j].first.c_str(), worst, n);
+    EXPECT_LT(worst, 1e-4) << filters[j].first;
   }
 }
 
