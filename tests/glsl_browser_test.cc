@@ -88,6 +88,17 @@ HolesModel HolesWithTile(HoleMethod method, int level) {
   return model;
 }
 
+// web/eval_glsl.html's DOM after it ran the jobs of `manifest` (JSON) on
+// the files in `dir`.
+std::string RunJobs(const fs::path& dir, const std::string& manifest) {
+  testing_util::WriteText(dir / "jobs.json", manifest);
+  testing_util::ServeWebPage(dir, "eval_glsl.html");
+  const testing_util::LocalServer server(dir);
+  EXPECT_GT(server.port(), 0);
+  return testing_util::DumpDom(server.Url("eval_glsl.html?manifest=jobs.json"),
+                               dir);
+}
+
 TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
   if (!testing_util::BrowserAvailable()) {
     GTEST_SKIP() << "no browser: /usr/bin/chromium is not installed "
@@ -139,12 +150,7 @@ TEST(GlslBrowser, EveryExportedModelMatchesTheCppModelOnTheGpu) {
                 ".glsl\", \"dirs\": \"" + job.name + ".dirs\", \"fn\": \"" +
                 job.fn + "\"}";
   }
-  testing_util::WriteText(dir / "jobs.json", manifest + "]");
-  testing_util::ServeWebPage(dir, "eval_glsl.html");
-  const testing_util::LocalServer server(dir);
-  ASSERT_GT(server.port(), 0);
-  const std::string dom = testing_util::DumpDom(
-      server.Url("eval_glsl.html?manifest=jobs.json"), dir);
+  const std::string dom = RunJobs(dir, manifest + "]");
   ASSERT_EQ(testing_util::PreText(dom, "done"), "DONE") << dom.substr(0, 500);
 
   for (size_t j = 0; j < jobs.size(); ++j) {
@@ -258,12 +264,7 @@ TEST(GlslBrowser, TextureMapsMatchTheFilteredMaterialOnTheGpu) {
                 ".params.bin\", \"layers\": " + std::to_string(2 + 4 * 2 + 4) +
                 ", \"sizes\": [[2, 2], [1, 1]], \"uv\": \"map.uv\"}";
   }
-  testing_util::WriteText(dir / "jobs.json", manifest + "]");
-  testing_util::ServeWebPage(dir, "eval_glsl.html");
-  const testing_util::LocalServer server(dir);
-  ASSERT_GT(server.port(), 0);
-  const std::string dom = testing_util::DumpDom(
-      server.Url("eval_glsl.html?manifest=jobs.json"), dir);
+  const std::string dom = RunJobs(dir, manifest + "]");
   ASSERT_EQ(testing_util::PreText(dom, "done"), "DONE") << dom.substr(0, 500);
   for (size_t j = 0; j < filters.size(); ++j) {
     const std::vector<float> gpu = testing_util::FloatsOf(
