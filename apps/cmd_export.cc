@@ -3,6 +3,7 @@
 // metallic-roughness base under KHR_materials_sheen (models/sheen.h), is
 // fitted to the source (fitting/sheen_conversion.h); the error the
 // conversion leaves is printed and stored in the material's extras.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -78,6 +79,73 @@ int ExportGlsl(const CommandArgs& args) {
   return 0;
 }
 
+// --format gltf of a Lafortune parameter mip map: one glTF material per
+// texel of --level, fitted on a 5 x 8 direction grid (1,600 pairs per
+// texel), as the four textures of the material (export/gltf.h
+// SheenTextures); the error is that of the 8-bit textures.
+int ExportGltfMap(const CommandArgs& args, int grid, const std::string& out) {
+  const ParamMipmap mipmap = ReadParamMipmap(args.Get("params"));
+  const long level = args.GetInt("level");
+  if (level < 0 || level >= static_cast<long>(mipmap.levels.size())) {
+    args.Fail("option '--level': the map has levels 0.." +
+              std::to_string(mipmap.levels.size() - 1));
+  }
+  const int width = mipmap.levels[level].width;
+  const int height = mipmap.levels[level].height;
+  const std::vector<LafortuneModel> texels =
+      LevelFromParamMipmap(mipmap, static_cast<int>(level));
+  constexpr int kPolar = 5, kAzimuth = 8;
+  NoiseModel absolute;
+  absolute.kind = NoiseKind::kAbsolute;
+  std::vector<SheenParams> fitted;
+  int not_converged = 0;
+  for (const LafortuneModel& texel : texels) {
+    const SheenConversion c =
+        ConvertToSheen(ReflectionGrid(texel, kPolar, kAzimuth), absolute);
+    fitted.push_back(c.params);
+    not_converged += c.report.converged ? 0 : 1;
+  }
+  std::vector<SheenParams> quantized;
+  GltfMaterial material;
+  material.name = "texture map";
+  material.textures = SheenTextures(fitted, width, height, &quantized);
+  material.sheen.base_color = material.sheen.sheen_color = glm::dvec3(1.0);
+  material.sheen.roughness = material.sheen.sheen_roughness = 1.0;
+  double diff2 = 0.0, data2 = 0.0;
+  for (size_t i = 0; i < texels.size(); ++i) {
+    AddGridError(texels[i], quantized[i], kPolar, kAzimuth, &diff2, &data2);
+  }
+  const double relative_rms = data2 > 0.0 ? std::sqrt(diff2 / data2) : 0.0;
+  const nlohmann::ordered_json extras = {
+      {"clothfit",
+       {{"source", args.Get("params")},
+        {"source_model", "lafortune_mipmap"},
+        {"level", level},
+        {"texels", texels.size()},
+        {"conversion",
+         {{"quantity", "cosine_weighted"},
+          {"rows", texels.size() * kPolar * kAzimuth * kPolar * kAzimuth},
+          {"relative_rms", relative_rms},
+          {"texels_not_converged", not_converged}}}}}};
+  material.extras_json = extras.dump();
+  const std::vector<std::string> written =
+      WriteGltf(ClothMesh(grid), material, out);
+  std::printf(
+      "%s level %ld (%d x %d texels) as glTF sheen textures\n"
+      "conversion error: relative rms %.4g over %zu texels (8-bit textures; "
+      "%d texel fit(s) not converged)\n",
+      args.Get("params").c_str(), level, width, height, relative_rms,
+      texels.size(), not_converged);
+  for (const std::string& f : written) std::printf("wrote %s\n", f.c_str());
+  if (not_converged > 0) {
+    std::cerr << "error: " << not_converged
+              << " texel fit(s) did not converge (parameters at a search "
+                 "limit)\n";
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int RunExport(int argc, char** argv) {
@@ -100,6 +168,7 @@ int RunExport(int argc, char** argv) {
   args.Option("data", "T.csv", "a measured table instead");
   args.Option("out", "FILE.gltf", ".gltf (+ .bin beside it) or .glb");
   args.Option("grid", "N", "quads per side of the sheet", "48");
+  args.Option("level", "L", "gltf of a texture map: the mip level", "0");
   args.Option("filter", "F",
               "glsl of a texture map: nearest, bilinear or trilinear",
               "nearest");
@@ -133,9 +202,7 @@ int RunExport(int argc, char** argv) {
   } else {
     if (args.Has("params") &&
         text_util::HasExtension(args.Get("params"), ".exr")) {
-      args.Fail(
-          args.Get("params") +
-          ": texture maps have no glTF export yet (--format glsl has one)");
+      return ExportGltfMap(args, static_cast<int>(grid), out);
     }
     const ParamFile file = LoadModelOption(args);
     source = args.Has("params") ? args.Get("params") : args.Get("preset");

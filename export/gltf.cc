@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "export/png.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
@@ -64,6 +65,38 @@ TriangleMesh ClothMesh(int n) {
   return mesh;
 }
 
+GltfTextures SheenTextures(const std::vector<SheenParams>& texels, int width,
+                           int height, std::vector<SheenParams>* quantized) {
+  std::vector<uint8_t> base, mr, sheen, sheen_rough;
+  if (quantized) quantized->clear();
+  for (const SheenParams& p : texels) {
+    SheenParams q;
+    for (int c = 0; c < 3; ++c) {
+      base.push_back(SrgbByte(p.base_color[c]));
+      sheen.push_back(SrgbByte(p.sheen_color[c]));
+      q.base_color[c] = SrgbToLinear(base.back());
+      q.sheen_color[c] = SrgbToLinear(sheen.back());
+    }
+    // Roughness in green, metallic 0 in blue; sheen roughness in alpha.
+    // A roughness of 0 is outside the model (a delta lobe): 1/255 at least.
+    const uint8_t r = std::max(LinearByte(p.roughness), uint8_t(1));
+    const uint8_t rs = std::max(LinearByte(p.sheen_roughness), uint8_t(1));
+    for (uint8_t v : {uint8_t(0), r, uint8_t(0)}) mr.push_back(v);
+    for (uint8_t v : {uint8_t(0), uint8_t(0), uint8_t(0), rs}) {
+      sheen_rough.push_back(v);
+    }
+    q.roughness = r / 255.0;
+    q.sheen_roughness = rs / 255.0;
+    if (quantized) quantized->push_back(q);
+  }
+  GltfTextures out;
+  out.base_color = EncodePng(width, height, 3, base);
+  out.metallic_roughness = EncodePng(width, height, 3, mr);
+  out.sheen_color = EncodePng(width, height, 3, sheen);
+  out.sheen_roughness = EncodePng(width, height, 4, sheen_rough);
+  return out;
+}
+
 GltfDocument BuildGltf(const TriangleMesh& mesh, const GltfMaterial& material,
                        const std::string& bin_uri) {
   GltfDocument doc;
@@ -108,6 +141,24 @@ GltfDocument BuildGltf(const TriangleMesh& mesh, const GltfMaterial& material,
                        {"componentType", kUnsignedInt},
                        {"count", mesh.indices.size()},
                        {"type", "SCALAR"}});
+  // The textures' PNG files, in the buffer (images by bufferView).
+  json images = json::array(), textures = json::array();
+  auto add_texture = [&](const std::string& png) -> int {
+    if (png.empty()) return -1;
+    const size_t at = doc.bin.size();
+    Append(std::vector<uint8_t>(png.begin(), png.end()), &doc.bin);
+    views.push_back(
+        {{"buffer", 0}, {"byteOffset", at}, {"byteLength", png.size()}});
+    images.push_back(
+        {{"bufferView", views.size() - 1}, {"mimeType", "image/png"}});
+    textures.push_back({{"sampler", 0}, {"source", images.size() - 1}});
+    return static_cast<int>(textures.size()) - 1;
+  };
+  const GltfTextures& tx = material.textures;
+  const int base_texture = add_texture(tx.base_color);
+  const int mr_texture = add_texture(tx.metallic_roughness);
+  const int sheen_texture = add_texture(tx.sheen_color);
+  const int sheen_rough_texture = add_texture(tx.sheen_roughness);
   const SheenParams& s = material.sheen;
   json buffer = {{"byteLength", doc.bin.size()}};
   if (!bin_uri.empty()) buffer["uri"] = bin_uri;
@@ -122,6 +173,18 @@ GltfDocument BuildGltf(const TriangleMesh& mesh, const GltfMaterial& material,
                {{"sheenColorFactor", Rgb(s.sheen_color)},
                 {"sheenRoughnessFactor", s.sheen_roughness}}}}},
             {"extras", json::parse(material.extras_json)}};
+  auto info = [](int index) { return json{{"index", index}, {"texCoord", 0}}; };
+  if (base_texture >= 0) {
+    m["pbrMetallicRoughness"]["baseColorTexture"] = info(base_texture);
+  }
+  if (mr_texture >= 0) {
+    m["pbrMetallicRoughness"]["metallicRoughnessTexture"] = info(mr_texture);
+  }
+  json& sheen_ext = m["extensions"]["KHR_materials_sheen"];
+  if (sheen_texture >= 0) sheen_ext["sheenColorTexture"] = info(sheen_texture);
+  if (sheen_rough_texture >= 0) {
+    sheen_ext["sheenRoughnessTexture"] = info(sheen_rough_texture);
+  }
   json gltf = {
       {"asset", {{"version", "2.0"}, {"generator", "clothfit export"}}},
       {"extensionsUsed", {"KHR_materials_sheen"}},
@@ -138,6 +201,16 @@ GltfDocument BuildGltf(const TriangleMesh& mesh, const GltfMaterial& material,
       {"buffers", {buffer}},
       {"bufferViews", views},
       {"accessors", accessors}};
+  if (!textures.empty()) {
+    // Linear filtering with mipmaps, clamped at the edges (a fitted map
+    // need not tile; api/material.h filters alike).
+    gltf["samplers"] = {{{"magFilter", 9729},
+                         {"minFilter", 9987},
+                         {"wrapS", 33071},
+                         {"wrapT", 33071}}};
+    gltf["images"] = images;
+    gltf["textures"] = textures;
+  }
   doc.json = gltf.dump(1);
   return doc;
 }

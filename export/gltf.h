@@ -27,9 +27,25 @@ struct TriangleMesh {
 // x (the warp, SPEC §1), v along y (the weft).
 TriangleMesh ClothMesh(int n = 48);
 
+// A texture map's textures as PNG files (export/png.h; empty: none):
+// base colour and sheen colour sRGB-encoded; roughness in the green channel
+// of the metallic-roughness texture (blue, metallic, 0) and sheen
+// roughness in the alpha channel of its texture, linear (glTF 2.0 §3.9,
+// KHR_materials_sheen). The material's factors multiply them.
+struct GltfTextures {
+  std::string base_color, metallic_roughness, sheen_color, sheen_roughness;
+};
+
+// The four textures of a width x height map of materials (row 0 first),
+// and in *quantized (may be null) the materials the 8-bit textures give
+// back (with factors 1).
+GltfTextures SheenTextures(const std::vector<SheenParams>& texels, int width,
+                           int height, std::vector<SheenParams>* quantized);
+
 struct GltfMaterial {
   std::string name = "cloth";
   SheenParams sheen;
+  GltfTextures textures;
   std::string extras_json = "{}";  // a JSON object: the material's extras
 };
 

@@ -6,17 +6,18 @@
 
 namespace clothfit {
 
-MeasurementTable ReflectionGrid(const ModelParams& model) {
+MeasurementTable ReflectionGrid(const ModelParams& model, int polar,
+                                int azimuth) {
   if (!ModelPredicts(model, Quantity::kCosineWeighted)) {
     throw InputError(std::string("a ") + ModelName(model) +
                      " model does not reflect light: it has no glTF "
                      "material");
   }
   std::vector<glm::dvec3> dirs;
-  for (int i = 0; i < 9; ++i) {
-    for (int k = 0; k < 12; ++k) {
-      dirs.push_back(
-          DirectionFromAngles(Radians(5.0 + 10.0 * i), Radians(30.0 * k)));
+  for (int i = 0; i < polar; ++i) {
+    for (int k = 0; k < azimuth; ++k) {
+      dirs.push_back(DirectionFromAngles(Radians((i + 0.5) * 90.0 / polar),
+                                         Radians(360.0 * k / azimuth)));
     }
   }
   MeasurementTable table;
@@ -58,6 +59,18 @@ SheenConversion ConvertToSheen(const MeasurementTable& table,
   out.rms = n > 0 ? std::sqrt(diff / n) : 0.0;
   out.relative_rms = data > 0.0 ? std::sqrt(diff / data) : 0.0;
   return out;
+}
+
+void AddGridError(const ModelParams& source, const SheenParams& sheen,
+                  int polar, int azimuth, double* diff2, double* data2) {
+  const MeasurementTable grid = ReflectionGrid(source, polar, azimuth);
+  for (const TableRow& row : grid.rows) {
+    const glm::dvec3 m = Value(sheen, row.wi, row.wo, grid.quantity);
+    for (int c = 0; c < 3; ++c) {
+      *diff2 += Sqr(m[c] - row.value[c]);
+      *data2 += Sqr(row.value[c]);
+    }
+  }
 }
 
 }  // namespace clothfit

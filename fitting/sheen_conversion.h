@@ -17,7 +17,10 @@ namespace clothfit {
 // `model` at every pair (what a renderer integrates; grazing light weighs
 // little). Throws InputError for a model that does not reflect (slab
 // transmission is left out: the glTF material is opaque; holes).
-MeasurementTable ReflectionGrid(const ModelParams& model);
+// `polar` x `azimuth` directions (polar angles (k + 0.5) 90 / polar
+// degrees, azimuths every 360 / azimuth degrees) give a coarser grid.
+MeasurementTable ReflectionGrid(const ModelParams& model, int polar = 9,
+                                int azimuth = 12);
 
 struct SheenConversion {
   SheenParams params;
@@ -34,5 +37,11 @@ struct SheenConversion {
 // measured table, weighted by its own noise model: `noise`).
 SheenConversion ConvertToSheen(const MeasurementTable& table,
                                const NoiseModel& noise);
+
+// The squared differences of `sheen` from `source` and the squared values
+// of `source` over ReflectionGrid(source, polar, azimuth), added to *diff2
+// and *data2 (for a relative RMS over many texels).
+void AddGridError(const ModelParams& source, const SheenParams& sheen,
+                  int polar, int azimuth, double* diff2, double* data2);
 
 }  // namespace clothfit

@@ -13,7 +13,10 @@
 #include <vector>
 
 #include "export/gltf.h"
+#include "export/png.h"
 #include "fitting/sheen_conversion.h"
+#include "io/lafortune_mipmap.h"
+#include "io/param_mipmap.h"
 #include "models/presets.h"
 #include "tests/cli_test_util.h"
 #include "tests/direction_util.h"
@@ -166,6 +169,99 @@ TEST(GltfExport, CliWritesFilesTheValidatorAccepts) {
             "--out", linen});
   ASSERT_EQ(r.status, 0) << Describe(r);
   ExpectValid(linen);
+}
+
+// A PNG of stored deflate blocks, read back by hand (PNG 1.2 §11, RFC
+// 1950/1951): signature, IHDR, the scanlines after filter byte 0, and the
+// Adler-32 of the raw data.
+TEST(GltfExport, PngEncoderWritesTheImage) {
+  const int w = 3, h = 2;
+  std::vector<uint8_t> pixels;
+  for (int k = 0; k < w * h * 4; ++k) pixels.push_back(uint8_t(k * 9));
+  const std::string png = EncodePng(w, h, 4, pixels);
+  ASSERT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  auto be32 = [&](size_t at) {
+    return (uint32_t(uint8_t(png[at])) << 24) |
+           (uint32_t(uint8_t(png[at + 1])) << 16) |
+           (uint32_t(uint8_t(png[at + 2])) << 8) |
+           uint32_t(uint8_t(png[at + 3]));
+  };
+  EXPECT_EQ(png.substr(12, 4), "IHDR");
+  EXPECT_EQ(be32(16), 3u);
+  EXPECT_EQ(be32(20), 2u);
+  EXPECT_EQ(uint8_t(png[24]), 8);  // bit depth
+  EXPECT_EQ(uint8_t(png[25]), 6);  // RGBA
+  const size_t idat = 8 + 12 + 13;
+  EXPECT_EQ(png.substr(idat + 4, 4), "IDAT");
+  const std::string z = png.substr(idat + 8, be32(idat));
+  ASSERT_EQ(uint8_t(z[2]), 1);  // one final stored block
+  const size_t n = uint8_t(z[3]) | (uint8_t(z[4]) << 8);
+  ASSERT_EQ(n, size_t(h) * (1 + w * 4));
+  const std::string raw = z.substr(7, n);
+  for (int y = 0; y < h; ++y) {
+    EXPECT_EQ(raw[y * (1 + w * 4)], 0);  // filter type 0
+    for (int k = 0; k < w * 4; ++k) {
+      EXPECT_EQ(uint8_t(raw[y * (1 + w * 4) + 1 + k]), pixels[y * w * 4 + k]);
+    }
+  }
+  EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND");
+  // sRGB: 0 and 1 exact, 0.5 at byte 188, and back within a byte's step.
+  EXPECT_EQ(SrgbByte(0.0), 0);
+  EXPECT_EQ(SrgbByte(1.0), 255);
+  EXPECT_EQ(SrgbByte(0.5), 188);
+  EXPECT_NEAR(SrgbToLinear(SrgbByte(0.2)), 0.2, 0.003);
+}
+
+// A Lafortune texture map exported as textures: the validator accepts the
+// file, each texel gets its own material (a brighter texel a brighter base
+// colour), and the conversion error is stored.
+TEST(GltfExport, TextureMapBecomesTextures) {
+  const fs::path dir = testing_util::FreshTestDir("export_");
+  LafortuneTexelMap base, top;
+  base.width = base.height = 2;
+  for (int i = 0; i < 4; ++i) {
+    LafortuneModel m;
+    m.params.diffuse = glm::dvec3(0.04 + 0.05 * i, 0.06, 0.05);
+    LafortuneLobe lobe;
+    lobe.cx = lobe.cy = glm::dvec3(0.6);  // a broad back-scattering lobe
+    lobe.cz = glm::dvec3(0.6);
+    lobe.n = glm::dvec3(3.0);
+    m.params.lobes = {lobe};
+    base.texels.push_back(m);
+  }
+  top.width = top.height = 1;
+  top.texels.push_back(base.texels[2]);
+  const std::string map = (dir / "map.exr").string();
+  WriteParamMipmap(ToParamMipmap({base, top}, {}), map);
+  const std::string out = (dir / "map.gltf").string();
+  const RunResult r =
+      RunClothfit(dir, {"export", "--params", map, "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  ExpectValid(out);
+  const json j = json::parse(testing_util::ReadText(out));
+  ASSERT_EQ(j["images"].size(), 4u);
+  const json& m = j["materials"][0];
+  EXPECT_TRUE(m["pbrMetallicRoughness"].contains("baseColorTexture"));
+  EXPECT_TRUE(
+      m["extensions"]["KHR_materials_sheen"].contains("sheenRoughnessTexture"));
+  const double error =
+      m["extras"]["clothfit"]["conversion"]["relative_rms"].get<double>();
+  EXPECT_GT(error, 0.0);
+  EXPECT_LT(error, 1.0);
+  // The base colour texture's red channel grows with the texels' rho_d
+  // (texel i at row i / 2, column i % 2): read its stored block.
+  const std::string bin = testing_util::ReadText(dir / "map.bin");
+  const json& view = j["bufferViews"][j["images"][0]["bufferView"].get<int>()];
+  const std::string png = bin.substr(view["byteOffset"].get<size_t>(),
+                                     view["byteLength"].get<size_t>());
+  const std::string raw = png.substr(8 + 12 + 13 + 8 + 7);  // IDAT's data
+  std::vector<int> red;
+  for (int y = 0; y < 2; ++y) {
+    for (int x = 0; x < 2; ++x) red.push_back(uint8_t(raw[y * 7 + 1 + 3 * x]));
+  }
+  EXPECT_LT(red[0], red[1]);
+  EXPECT_LT(red[1], red[2]);
+  EXPECT_LT(red[2], red[3]);
 }
 
 TEST(GltfExport, BadInputIsExitTwo) {
