@@ -102,8 +102,9 @@ class MaterialT {
 
   // Importance sampling (models/model_sampling.h): wi given wo from two
   // uniform numbers in [0, 1), at the texels F uses. Every model samples
-  // the side(s) its F covers (cloth and Lafortune reflect, a thread
-  // scatters to both sides, a slab reflects and transmits).
+  // the side(s) its F covers (cloth, Lafortune and sheen reflect, a thread
+  // scatters to both sides, a slab reflects and transmits); a slab's
+  // direct transmission and a holes layer are delta samples.
   BsdfSampleT<Real> Sample(const Vec& wo, Real u1, Real u2, Real s = Real(0),
                            Real t = Real(0), Real lod = Real(0)) const noexcept;
   // The density per steradian with which Sample returns wi (its
