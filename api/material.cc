@@ -148,6 +148,10 @@ template <typename Real>
 typename MaterialT<Real>::Vec MaterialT<Real>::Value(
     const Vec& wi, const Vec& wo, Real s, Real t, Real lod,
     Quantity q) const noexcept {
+  // One texel (a parameter file): no lookup.
+  if (levels_.size() == 1 && levels_[0].texels.size() == 1) {
+    return EvaluatePrepared(levels_[0].texels[0], wi, wo, q);
+  }
   const Taps taps = Lookup(s, t, lod);
   if (taps.count == 1) return EvaluatePrepared(*taps.texel[0], wi, wo, q);
   Vec sum(Real(0));
