@@ -60,7 +60,10 @@ bool CommandArgs::Parse(int argc, char** argv, int first) {
       has_inline = true;
     }
     const auto it = specs_.find(name);
-    if (it == specs_.end()) Fail("unknown option '--" + name + "'");
+    if (it == specs_.end()) {
+      Fail("unknown option '--" + text_util::EscapeControl(name) + "'" +
+           text_util::DidYouMean(name, order_, "--"));
+    }
     if (values_.count(name)) Fail("option '--" + name + "' given twice");
     if (it->second.value_name.empty()) {
       if (has_inline) Fail("option '--" + name + "' takes no value");

@@ -10,6 +10,7 @@
 #include "apps/commands.h"
 #include "apps/full_binary.h"
 #include "holes/hole_texture.h"
+#include "io/text_util.h"
 #include "models/presets.h"
 
 namespace clothfit {
@@ -31,12 +32,17 @@ ParamFile LoadModelOption(const CommandArgs& args,
               " FILE and --preset NAME");
   }
   if (args.Has(file_option)) return ReadParamFile(args.Get(file_option));
+  return ParamFile{RequirePreset(args, args.Get("preset")), ""};
+}
+
+ClothParams RequirePreset(const CommandArgs& args, const std::string& name) {
   ClothParams cloth;
-  if (!GetPreset(args.Get("preset"), &cloth)) {
-    args.Fail("unknown preset '" + args.Get("preset") +
-              "'; 'clothfit presets' lists them");
+  if (!GetPreset(name, &cloth)) {
+    args.Fail("unknown preset '" + text_util::EscapeControl(name) + "'" +
+              text_util::DidYouMean(name, PresetNames()) +
+              "; 'clothfit presets' lists them");
   }
-  return ParamFile{cloth, ""};
+  return cloth;
 }
 
 ParamFile LoadEvaluableModel(const CommandArgs& args, Quantity quantity,

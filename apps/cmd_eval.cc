@@ -87,7 +87,8 @@ int RunEval(int argc, char** argv) {
   const std::string out_path = args.Required("out");
   ReadTableOptions read_options;
   read_options.values_optional = true;
-  MeasurementTable table = ReadTable(args.Required("dirs"), read_options).table;
+  MeasurementTable table =
+      ReadTableOption(args, args.Required("dirs"), read_options);
   // A transmittance table is evaluated as such; any other as --quantity.
   if (table.quantity != Quantity::kTransmittance) table.quantity = quantity;
   if (mipmap && table.quantity == Quantity::kTransmittance) {

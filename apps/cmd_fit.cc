@@ -139,15 +139,29 @@ SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss) {
 }
 
 MeasurementTable ReadTableOption(const CommandArgs& args,
-                                 const std::string& path) {
-  ReadTableOptions read_options;
+                                 const std::string& path,
+                                 ReadTableOptions read_options) {
   read_options.skip_invalid = args.Has("skip-invalid");
   ReadTableResult read = ReadTable(path, read_options);
   if (read.skipped > 0) {
     std::cerr << "warning: skipped " << read.skipped
               << " invalid row(s); first: " << read.first_skip_reason << "\n";
   }
+  for (const std::string& warning : read.warnings) {
+    std::cerr << "warning: " << warning << "\n";
+  }
   return std::move(read.table);  // not a copy: ~150 bytes a row
+}
+
+void WarnArbitraryScale(const CommandArgs& args,
+                        const MeasurementTable& table) {
+  if (args.Has("fit-scale")) return;
+  if (const std::optional<std::string> note = ArbitraryScaleNote(table)) {
+    std::cerr << "warning: " << table.source << ": its metadata says '"
+              << text_util::EscapeControl(*note)
+              << "': a physically based model fits values on an arbitrary "
+                 "scale only with --fit-scale (a factor on the model)\n";
+  }
 }
 
 MeasurementTable ReadDataOption(const CommandArgs& args) {
@@ -185,8 +199,8 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
     return 1;
   }
   if (!report.converged) {
-    std::cerr << "error: the solver stopped without converging ("
-              << report.termination << "): " << report.message << "\n";
+    std::cerr << "error: the fit did not converge: " << report.message
+              << " (solver: " << report.termination << ")\n";
     return 1;
   }
   return 0;
@@ -225,7 +239,18 @@ int Finish(const CommandArgs& args, const ModelParams& fitted,
     extras.text = SelectionReportText(*selection) + "\n";
     extras.json.emplace_back("selection", SelectionReportJson(*selection));
   }
-  return FinishFit(args, fitted, report, truth, extras);
+  const int status = FinishFit(args, fitted, report, truth, extras);
+  // A physically based model far from the data: a table on another scale
+  // is the common cause (a thread fitted to CUReT: albedo 0, relative rms
+  // 1.2).
+  if (report.usable && report.relative_rms > 0.5 && !args.Has("fit-scale") &&
+      !std::holds_alternative<SheenParams>(fitted)) {
+    std::cerr << "hint: relative rms "
+              << text_util::FormatNumber(report.relative_rms, 3)
+              << ": if the table's values are not on a reflectance scale, "
+                 "--fit-scale fits a factor on the model\n";
+  }
+  return status;
 }
 
 }  // namespace
@@ -318,6 +343,7 @@ int RunFit(int argc, char** argv) {
   if (args.Has("folds")) args.Fail("--folds is for --model auto");
   if (args.Has("per-channel-tau")) args.Fail("--per-channel-tau is for slab");
   const MeasurementTable table = ReadDataOption(args);
+  if (model != "sheen") WarnArbitraryScale(args, table);
   const std::vector<std::string> fix = ListOption(args, "fix");
   const std::vector<std::string> free_only = ListOption(args, "free");
   int starts = 0;  // 0: the model's default
@@ -435,7 +461,9 @@ int RunFit(int argc, char** argv) {
   args.Fail(
       "option '--model': expected thread, cloth, slab, sheen, auto, "
       "lafortune or holes, got '" +
-      model + "'");
+      text_util::EscapeControl(model) + "'" +
+      text_util::DidYouMean(model, {"thread", "cloth", "slab", "sheen", "auto",
+                                    "lafortune", "holes"}));
 }
 
 }  // namespace clothfit

@@ -64,6 +64,7 @@ int RunFitAuto(const CommandArgs& args, const SolverOptions& solver) {
   }
   options.progress = solver.progress;
   const MeasurementTable table = ReadDataOption(args);
+  WarnArbitraryScale(args, table);
   const std::string candidates = CandidatesPath(args.Get("out"));
   CheckWritable(candidates);
   const FabricSelection s = SelectFabricModel(table, options);

@@ -88,7 +88,8 @@ HolesParams ModelOption(const CommandArgs& args) {
 MeasurementTable DirectionsTable(const CommandArgs& args) {
   ReadTableOptions options;
   options.values_optional = true;
-  MeasurementTable table = ReadTable(args.Required("dirs"), options).table;
+  MeasurementTable table =
+      ReadTableOption(args, args.Required("dirs"), options);
   table.quantity = Quantity::kTransmittance;
   table.has_sigma = table.has_weight = table.has_alpha = false;
   return table;

@@ -40,7 +40,7 @@ int RunPlot(int argc, char** argv) {
   if (!args.Parse(argc, argv, 2)) return 0;
   const std::string out_path = args.Required("out");
   CheckWritable(out_path);
-  const MeasurementTable table = ReadTable(args.Required("data")).table;
+  const MeasurementTable table = ReadTableOption(args, args.Required("data"));
   if (table.quantity == Quantity::kTransmittance) {
     args.Fail(args.Get("data") + ": plot draws reflection, not transmittance");
   }

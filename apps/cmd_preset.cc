@@ -16,11 +16,7 @@ int RunPreset(int argc, char** argv) {
   if (args.Positional().size() != 1) {
     args.Fail("expected one preset name (see 'clothfit presets')");
   }
-  ClothParams cloth;
-  if (!GetPreset(args.Positional()[0], &cloth)) {
-    args.Fail("unknown preset '" + args.Positional()[0] +
-              "'; 'clothfit presets' lists them");
-  }
+  const ClothParams cloth = RequirePreset(args, args.Positional()[0]);
   const ParamFile file{cloth, ""};
   if (args.Has("out")) {
     WriteParamFile(file, args.Get("out"));

@@ -27,12 +27,8 @@ PreviewImage RenderOption(const CommandArgs& args,
                           const PreviewOptions& options,
                           std::vector<SlabParams>* slabs) {
   if (args.Has(preset_option)) {
-    ClothParams cloth;
-    if (!GetPreset(args.Get(preset_option), &cloth)) {
-      args.Fail("unknown preset '" + args.Get(preset_option) +
-                "'; 'clothfit presets' lists them");
-    }
-    return RenderCylinders(cloth, options);
+    return RenderCylinders(RequirePreset(args, args.Get(preset_option)),
+                           options);
   }
   const std::string path = args.Get(file_option);
   if (text_util::HasExtension(path, ".exr")) {

@@ -137,7 +137,7 @@ int RunSynth(int argc, char** argv) {
     }
     ReadTableOptions read_options;
     read_options.values_optional = true;
-    table = ReadTable(args.Get("dirs"), read_options).table;
+    table = ReadTableOption(args, args.Get("dirs"), read_options);
   } else {
     DirectionSampling sampling;
     const long rows = args.GetInt("rows");

@@ -35,6 +35,8 @@ Quantity ModelQuantityOption(const CommandArgs& args, const std::string& name);
 
 // The parameters named by --FILE_OPTION FILE (e.g. --params) or --preset
 // NAME; exactly one of the two must be given.
+// The preset `name`; an unknown name fails naming the closest preset.
+ClothParams RequirePreset(const CommandArgs& args, const std::string& name);
 ParamFile LoadModelOption(const CommandArgs& args,
                           const std::string& file_option = "params");
 
@@ -81,9 +83,14 @@ void AddSolverOptions(CommandArgs* args, const SolverOptions& defaults,
 SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss);
 
 // Reads the table at `path`, dropping invalid rows (with a warning naming
-// the first) when the command has --skip-invalid and it is given.
+// the first) when the command has --skip-invalid and it is given, and
+// prints the reader's warnings (radians read as degrees, percent).
 MeasurementTable ReadTableOption(const CommandArgs& args,
-                                 const std::string& path);
+                                 const std::string& path,
+                                 ReadTableOptions read_options = {});
+// A warning when `table`'s metadata says its values are on an arbitrary
+// scale and --fit-scale is not given.
+void WarnArbitraryScale(const CommandArgs& args, const MeasurementTable& table);
 // The table of --data, with --skip-invalid (a warning says how many rows
 // were dropped).
 MeasurementTable ReadDataOption(const CommandArgs& args);

@@ -88,12 +88,15 @@ const Command* FindCommand(const std::string& name) {
 // the usage is. `context` is "" or e.g. "clothfit help: ".
 int UnknownCommand(const std::string& context, const std::string& name) {
   std::string names;
+  std::vector<std::string> candidates;
   for (const Command& c : kCommands) {
     names += (names.empty() ? "" : ", ") + std::string(c.name);
+    candidates.push_back(c.name);
   }
   std::cerr << "error: " << context << "unknown command '"
-            << clothfit::text_util::EscapeControl(name)
-            << "' (commands: " << names << "; see 'clothfit --help')\n";
+            << clothfit::text_util::EscapeControl(name) << "'"
+            << clothfit::text_util::DidYouMean(name, candidates)
+            << " (commands: " << names << "; see 'clothfit --help')\n";
   return 2;
 }
 

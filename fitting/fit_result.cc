@@ -163,10 +163,15 @@ std::string FitReportText(const FitReport& r,
                           const std::vector<double>& truth) {
   std::ostringstream out;
   char line[256];
+  // The fit's verdict, then the solver's own word: a solver that reports
+  // CONVERGENCE at a search limit has not given a converged fit.
   std::snprintf(line, sizeof(line),
-                "fit: %s (%s), %d iterations over %d start(s), %.3f s\n",
-                r.usable ? (r.converged ? "converged" : "usable, not converged")
-                         : "FAILED",
+                "fit: %s; solver: %s, %d iterations over %d start(s), "
+                "%.3f s\n",
+                r.usable ? (r.converged ? "converged"
+                                        : "not converged (the 'reason' "
+                                          "line says why)")
+                         : "FAILED (the 'reason' line says why)",
                 r.termination.c_str(), r.iterations, r.starts, r.seconds);
   out << line;
   std::snprintf(line, sizeof(line),

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <glm/common.hpp>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -49,6 +51,18 @@ std::optional<std::string> MeasurementTable::Meta(
   const std::string wanted = Lower(Trim(key));
   for (const auto& [name, value] : metadata) {
     if (Lower(name) == wanted) return value;
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> ArbitraryScaleNote(const MeasurementTable& table) {
+  for (const auto& [key, value] : table.metadata) {
+    const std::string v = Lower(value);
+    const bool says =
+        (Lower(key) == "scale" && (v == "arbitrary" || v == "relative")) ||
+        (v.find("arbitrary") != std::string::npos &&
+         v.find("scale") != std::string::npos);
+    if (says) return key + ": " + value;
   }
   return std::nullopt;
 }
@@ -117,6 +131,28 @@ ReadTableResult ParseTable(const std::string& text, const std::string& name,
 
 namespace {
 
+// Appends "theta,phi," in degrees for the unit vector w. A direction read
+// from angles comes back through its unit vector a few ulps off (60 as
+// 59.999999999999993): when the angles rounded to 15 significant digits
+// give the same vector to 1e-15, they are written so; otherwise exactly.
+void AppendAngles(const glm::dvec3& w, std::string* out) {
+  double theta = 0.0;
+  double phi = 0.0;
+  AnglesFromDirection(w, &theta, &phi);
+  const std::string theta15 = FormatNumber(Degrees(theta), 15);
+  const std::string phi15 = FormatNumber(Degrees(phi), 15);
+  const glm::dvec3 back =
+      DirectionFromAngles(Radians(std::strtod(theta15.c_str(), nullptr)),
+                          Radians(std::strtod(phi15.c_str(), nullptr)));
+  const glm::dvec3 d = glm::abs(back - w);
+  if (std::max({d.x, d.y, d.z}) <= 1e-15) {
+    *out += theta15 + ',' + phi15 + ',';
+  } else {
+    *out +=
+        FormatNumber(Degrees(theta)) + ',' + FormatNumber(Degrees(phi)) + ',';
+  }
+}
+
 // The text of FormatTable, handed to `sink` in pieces of about 1 MiB (a
 // table of millions of rows is never held as one string).
 void FormatTableTo(const MeasurementTable& table,
@@ -176,18 +212,17 @@ void FormatTableTo(const MeasurementTable& table,
   std::vector<double> numbers;
   for (const TableRow& row : table.rows) {
     numbers.clear();
+    std::string angles;  // "theta,phi," of each direction written as angles
     auto add_direction = [&](const glm::dvec3& w) {
       if (vectors) {
         numbers.insert(numbers.end(), {w.x, w.y, w.z});
       } else {
-        double theta = 0.0;
-        double phi = 0.0;
-        AnglesFromDirection(w, &theta, &phi);
-        numbers.insert(numbers.end(), {Degrees(theta), Degrees(phi)});
+        AppendAngles(w, &angles);
       }
     };
     if (incident) add_direction(row.wi);
     add_direction(row.wo);
+    out += angles;
     if (one_channel) {
       numbers.push_back(row.value.x);
     } else {

@@ -87,7 +87,17 @@ struct ReadTableResult {
   MeasurementTable table;
   int skipped = 0;
   std::string first_skip_reason;  // "file:line:col: problem" of the first
+  // What looks wrong but may be right, "FILE: ..." each: every angle
+  // within radian range in a table read in degrees; values that look like
+  // percent. The commands print them as warnings.
+  std::vector<std::string> warnings;
 };
+
+// For a table whose metadata says its values are on an arbitrary scale
+// (a key "scale" with value "arbitrary" or "relative", or any metadata
+// value that says "arbitrary ... scale", as CUReT's "arbitrary common
+// scale"): that metadata line, "key: value". nullopt otherwise.
+std::optional<std::string> ArbitraryScaleNote(const MeasurementTable& table);
 
 // Reads a table. Throws InputError naming file, line and column on bad input:
 // missing/duplicate/unknown column, unparsable number, NaN/Inf, angle out of
@@ -98,7 +108,8 @@ ReadTableResult ReadTable(const std::string& path,
 ReadTableResult ParseTable(const std::string& text, const std::string& name,
                            const ReadTableOptions& options = {});
 
-// Writes a table (17 significant digits, metadata first). The file is written
+// Writes a table (values in the shortest form that reads back exactly,
+// angles to 15 significant digits, metadata first). The file is written
 // to a temporary name and renamed into place when complete. Throws
 // InputError if the path cannot be written.
 void WriteTable(const MeasurementTable& table, const std::string& path);

@@ -2,9 +2,11 @@
 #include <charconv>
 #include <cstdlib>
 #include <string>
+#include <utility>
 
 #include "io/table_parser_internal.h"
 #include "io/text_util.h"
+#include "models/math.h"
 
 namespace clothfit {
 namespace table_internal {
@@ -110,21 +112,104 @@ void TableParser::RequireAll(int first, int count, int line) {
   }
 }
 
+void TableParser::DetectSeparator(std::string_view header) {
+  size_t count[3] = {0, 0, 0};
+  bool quoted = false;
+  for (const char c : header) {
+    if (c == '"') quoted = !quoted;
+    if (quoted) continue;
+    count[0] += c == ',';
+    count[1] += c == ';';
+    count[2] += c == '\t';
+  }
+  separator_ = ',';
+  if (count[1] > count[0] && count[1] >= count[2]) separator_ = ';';
+  if (count[2] > count[0] && count[2] > count[1]) separator_ = '\t';
+}
+
+namespace {
+
+// A header field split into its name and its unit: "theta_i [deg]" and
+// "theta_i (deg)" give ("theta_i", "deg"); both lower-case and trimmed.
+std::pair<std::string, std::string> NameAndUnit(std::string_view field) {
+  field = Trim(field);
+  if (!field.empty() && (field.back() == ']' || field.back() == ')')) {
+    const char open = field.back() == ']' ? '[' : '(';
+    const size_t at = field.rfind(open);
+    if (at != std::string_view::npos && at > 0) {
+      return {Lower(Trim(field.substr(0, at))),
+              Lower(Trim(field.substr(at + 1, field.size() - at - 2)))};
+    }
+  }
+  return {Lower(field), ""};
+}
+
+bool IsAngleColumn(int column) { return column >= kThetaI && column <= kPhiO; }
+
+bool IsValueColumn(int column) {
+  return column == kValue || (column >= kR && column <= kSigmaB);
+}
+
+}  // namespace
+
+void TableParser::ApplyUnit(int column, const std::string& unit, int line,
+                            int field_column) {
+  column_factor_[column] = 1.0;
+  column_radians_[column] = radians_;
+  if (unit.empty()) return;
+  auto fail = [&](const std::string& expected) {
+    Fail(line, field_column,
+         ColumnLabel(column) + ": unknown unit " + Quote(unit) + " (" +
+             expected + ")");
+  };
+  if (IsAngleColumn(column)) {
+    const bool degrees = unit == "deg" || unit == "degree" ||
+                         unit == "degrees" || unit == "\xC2\xB0";
+    const bool radians = unit == "rad" || unit == "radian" || unit == "radians";
+    if (!degrees && !radians) fail("expected deg or rad");
+    if (units_line_ > 0 && radians != radians_) {
+      Fail(line, field_column,
+           ColumnLabel(column) + ": unit " + Quote(unit) +
+               " contradicts the 'units' metadata on line " +
+               std::to_string(units_line_));
+    }
+    column_radians_[column] = radians;
+    column_units_ = true;
+    return;
+  }
+  if (IsValueColumn(column)) {
+    if (unit == "%") {
+      column_factor_[column] = 0.01;
+      percent_unit_ = true;
+    } else if (unit != "1/sr" && unit != "sr^-1" && unit != "sr-1" &&
+               unit != "1") {
+      fail("expected 1/sr, sr^-1, 1 or %");
+    }
+    return;
+  }
+  Fail(line, field_column,
+       ColumnLabel(column) + ": takes no unit, got " + Quote(unit));
+}
+
 void TableParser::ParseHeader(std::string_view text, int line) {
   field_of_.fill(-1);
-  const std::vector<std::string_view> fields = SplitFields(text);
+  DetectSeparator(text);
+  const std::vector<std::string_view> fields = SplitFields(text, separator_);
+  std::vector<std::string> names(kColumnNames.begin(), kColumnNames.end());
   for (size_t i = 0; i < fields.size(); ++i) {
     const int field_column = static_cast<int>(i) + 1;
-    std::string name = Lower(Trim(fields[i]));
+    auto [name, unit] = NameAndUnit(fields[i]);
     if (name.empty()) Fail(line, field_column, "empty column name");
     const auto known =
         std::find(kColumnNames.begin(), kColumnNames.end(), name);
     if (known == kColumnNames.end()) {
       Fail(line, field_column,
-           "unknown column " + Quote(name) + " (expected " +
+           "unknown column " + Quote(name) +
+               text_util::DidYouMean(name, names) + " (expected " +
                "theta_i,phi_i,theta_o,phi_o or wi_x,wi_y,wi_z,wo_x,wo_y,wo_z; "
                "value or r,g,b; optional sigma or sigma_r,sigma_g,sigma_b, "
-               "weight, alpha, s,t, normal_x,normal_y,normal_z)");
+               "weight, alpha, s,t, normal_x,normal_y,normal_z; a unit may "
+               "follow a name: 'theta_i [deg]', 'theta_i (rad)')");
     }
     const int column = static_cast<int>(known - kColumnNames.begin());
     if (Has(column)) {
@@ -132,6 +217,7 @@ void TableParser::ParseHeader(std::string_view text, int line) {
            "duplicate " + ColumnLabel(column) + " (first at column " +
                std::to_string(field_of_[column] + 1) + ")");
     }
+    ApplyUnit(column, unit, line, field_column);
     field_of_[column] = static_cast<int>(i);
     header_names_.push_back(std::move(name));
   }
@@ -273,7 +359,59 @@ ReadTableResult TableParser::Finish() {
     Fail(header_line, 0, "table has no rows (only a header)");
   }
   result_.table.source = name_;
+  AddWarnings();
   return std::move(result_);
+}
+
+void TableParser::SampleValue(double value) {
+  if (value_count_ == 0) largest_value_ = smallest_value_ = value;
+  largest_value_ = std::max(largest_value_, value);
+  smallest_value_ = std::min(smallest_value_, value);
+  if (value_count_++ % value_stride_ != 0) return;
+  value_sample_.push_back(value);
+  if (value_sample_.size() < kValueSample) return;
+  for (size_t i = 0; 2 * i < value_sample_.size(); ++i) {
+    value_sample_[i] = value_sample_[2 * i];
+  }
+  value_sample_.resize((value_sample_.size() + 1) / 2);
+  value_stride_ *= 2;
+}
+
+void TableParser::AddWarnings() {
+  const MeasurementTable& table = result_.table;
+  const size_t rows = table.rows.size();
+  // Radians read as degrees: every angle within [0, pi/2] (theta) and
+  // [-2 pi, 2 pi] (phi) means directions within 1.6 degrees of the normal,
+  // which no gonioreflectometer table is.
+  if (table.direction_columns == DirectionColumns::kAngles && !radians_ &&
+      !column_units_ && rows >= 3 && largest_theta_ > 0.0 &&
+      largest_theta_ <= kPi / 2.0 + 1e-9 && largest_phi_ <= 2.0 * kPi + 1e-9) {
+    result_.warnings.push_back(
+        name_ + ": every angle is within the range of radians (largest theta " +
+        text_util::FormatNumber(largest_theta_, 4) + ", largest |phi| " +
+        text_util::FormatNumber(largest_phi_, 4) + ") but the table is read " +
+        (units_line_ > 0 ? "in degrees, as its 'units' line says"
+                         : "in degrees (the default)") +
+        ": if the angles are radians, add the line '# units: radians' or "
+        "name the columns 'theta_i [rad]', ...");
+  }
+  // Percent: a reflectance (brdf, cosine-weighted or transmittance) whose
+  // median over the rows exceeds 1 while no value exceeds 100.
+  if (has_values_ && !percent_unit_ && !value_sample_.empty() &&
+      smallest_value_ >= 0.0 && largest_value_ <= 100.0) {
+    std::vector<double> sample = value_sample_;
+    const auto middle = sample.begin() + sample.size() / 2;
+    std::nth_element(sample.begin(), middle, sample.end());
+    if (*middle > 1.0) {
+      result_.warnings.push_back(
+          name_ + ": the values look like percent (median " +
+          text_util::FormatNumber(*middle, 4) + ", largest " +
+          text_util::FormatNumber(largest_value_, 4) +
+          "; a reflectance's median is below 1): if they are, give the "
+          "value columns the unit '[%]' ('value [%]' or 'r [%]', ...) or "
+          "divide them by 100");
+    }
+  }
 }
 
 }  // namespace table_internal

@@ -101,14 +101,41 @@ class TableParser {
   bool Has(int column) const { return field_of_[column] >= 0; }
   void ParseRow(std::string_view text, int line);
   double Angle(int column) const;
+  // The separator of the header line: of ',', ';' and tab the one it holds
+  // most often (',' when it holds none); the rows use the same.
+  void DetectSeparator(std::string_view header);
+  // A header field's unit ("theta_i [deg]", "theta_i (rad)", "value [%]"),
+  // lower-case; checked against the column and the '# units' line.
+  void ApplyUnit(int column, const std::string& unit, int line,
+                 int field_column);
+  // Table-level warnings (ReadTableResult::warnings), from what the rows
+  // showed.
+  void AddWarnings();
+  // Keeps every value_stride_-th value for the median of AddWarnings (at
+  // most kValueSample of them: the stride doubles when full).
+  void SampleValue(double value);
 
   const std::string& name_;
   const ReadTableOptions& options_;
   bool has_values_ = true;  // false: a directions-only table
   ReadTableResult result_;
-  int line_ = 0;         // lines seen
-  int header_line_ = 0;  // line of the header, 0 before it
-  bool radians_ = false;
+  int line_ = 0;          // lines seen
+  int header_line_ = 0;   // line of the header, 0 before it
+  bool radians_ = false;  // the '# units' line's
+  // Per angle column: radians (from '# units' or the column's unit).
+  std::array<bool, kColumnCount> column_radians_{};
+  // Per column: the factor of its unit ('%': 0.01), 1 without.
+  std::array<double, kColumnCount> column_factor_{};
+  bool column_units_ = false;  // an angle column named its unit
+  bool percent_unit_ = false;  // a value column had the unit '%'
+  char separator_ = ',';
+  // What the rows showed, for AddWarnings: the largest |theta| and |phi|
+  // as written, and a sample of the values.
+  double largest_theta_ = 0.0, largest_phi_ = 0.0;
+  double largest_value_ = 0.0, smallest_value_ = 0.0;
+  std::vector<double> value_sample_;
+  size_t value_count_ = 0, value_stride_ = 1;
+  static constexpr size_t kValueSample = size_t{1} << 16;
   int quantity_line_ = 0;
   int units_line_ = 0;
   // Field index (0-based) of each known column, -1 when absent.

@@ -15,11 +15,11 @@ using text_util::SplitFields;
 using text_util::Trim;
 
 double TableParser::Angle(int column) const {
-  return radians_ ? numbers_[column] : Radians(numbers_[column]);
+  return column_radians_[column] ? numbers_[column] : Radians(numbers_[column]);
 }
 
 void TableParser::ParseRow(std::string_view text, int line) {
-  const std::vector<std::string_view> fields = SplitFields(text);
+  const std::vector<std::string_view> fields = SplitFields(text, separator_);
   const size_t expected = header_names_.size();
   if (fields.size() < expected) {
     Fail(line, static_cast<int>(fields.size()) + 1,
@@ -46,7 +46,14 @@ void TableParser::ParseRow(std::string_view text, int line) {
       Fail(line, field_column,
            ColumnLabel(column) + ": empty field (expected a number)");
     }
-    const std::optional<double> parsed = ParseNumber(field);
+    std::optional<double> parsed = ParseNumber(field);
+    if (!parsed && separator_ != ',' &&
+        field.find(',') != std::string_view::npos) {
+      // A decimal comma ("0,25"), as spreadsheets write with ';' or tabs.
+      std::string dotted(field);
+      std::replace(dotted.begin(), dotted.end(), ',', '.');
+      parsed = ParseNumber(dotted);
+    }
     if (!parsed) {
       Fail(line, field_column,
            ColumnLabel(column) + ": cannot parse " + Quote(field) +
@@ -58,7 +65,7 @@ void TableParser::ParseRow(std::string_view text, int line) {
            ColumnLabel(column) + ": " + Quote(field) +
                " is not a finite number");
     }
-    numbers_[column] = number;
+    numbers_[column] = number * column_factor_[column];
   }
 
   // Meaning, in column order.
@@ -85,13 +92,15 @@ void TableParser::ParseRow(std::string_view text, int line) {
   row.source_line = line;
   const MeasurementTable& table = result_.table;
   if (table.direction_columns == DirectionColumns::kAngles) {
-    const double max_theta = radians_ ? kPi : 180.0;
-    const double max_phi = radians_ ? 2.0 * kPi : 360.0;
-    const char* range_theta = radians_ ? "[0, pi] radians" : "[0, 180] degrees";
-    const char* range_phi =
-        radians_ ? "[-2 pi, 2 pi] radians" : "[-360, 360] degrees";
     for (int column = incident_columns_ ? kThetaI : kThetaO; column <= kPhiO;
          ++column) {
+      const bool radians = column_radians_[column];
+      const double max_theta = radians ? kPi : 180.0;
+      const double max_phi = radians ? 2.0 * kPi : 360.0;
+      const char* range_theta =
+          radians ? "[0, pi] radians" : "[0, 180] degrees";
+      const char* range_phi =
+          radians ? "[-2 pi, 2 pi] radians" : "[-360, 360] degrees";
       const bool theta = column == kThetaI || column == kThetaO;
       const double value = numbers_[column];
       const double low = theta ? 0.0 : -max_phi;
@@ -180,6 +189,20 @@ void TableParser::ParseRow(std::string_view text, int line) {
     row.t = texel(kT);
   }
 
+  // A valid row: what AddWarnings looks at.
+  if (table.direction_columns == DirectionColumns::kAngles) {
+    for (int column = incident_columns_ ? kThetaI : kThetaO; column <= kPhiO;
+         ++column) {
+      double& largest = column == kThetaI || column == kThetaO ? largest_theta_
+                                                               : largest_phi_;
+      largest = std::max(largest, std::abs(numbers_[column]));
+    }
+  }
+  if (has_values_) {
+    SampleValue(table.channels == 1
+                    ? row.value.x
+                    : (row.value.x + row.value.y + row.value.z) / 3.0);
+  }
   result_.table.rows.push_back(row);
 }
 

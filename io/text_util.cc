@@ -1,5 +1,7 @@
 #include "io/text_util.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <string>
 #include <string_view>
@@ -89,24 +91,120 @@ bool HasExtension(std::string_view path, std::string_view extension) {
          Lower(path.substr(path.size() - extension.size())) == Lower(extension);
 }
 
-std::vector<std::string_view> SplitFields(std::string_view line) {
+std::vector<std::string_view> SplitFields(std::string_view line,
+                                          char separator) {
   std::vector<std::string_view> fields;
+  const bool quotes = line.find('"') != std::string_view::npos;
   size_t start = 0;
   while (true) {
-    const size_t comma = line.find(',', start);
-    if (comma == std::string_view::npos) {
+    size_t end = line.find(separator, start);
+    if (quotes) {
+      // A quoted field: from its opening quote (after spaces) to the
+      // closing one that is not doubled.
+      size_t open = start;
+      while (open < line.size() && (line[open] == ' ' || line[open] == '\t') &&
+             line[open] != separator) {
+        ++open;
+      }
+      if (open < line.size() && line[open] == '"') {
+        size_t close = open + 1;
+        while (close < line.size()) {
+          if (line[close] == '"') {
+            if (close + 1 < line.size() && line[close + 1] == '"') {
+              close += 2;
+              continue;
+            }
+            break;
+          }
+          ++close;
+        }
+        if (close < line.size()) {
+          end = line.find(separator, close);
+          const std::string_view rest = line.substr(
+              close + 1,
+              (end == std::string_view::npos ? line.size() : end) - close - 1);
+          // Text after the closing quote other than spaces keeps the
+          // field as written (the number reader then names it).
+          if (Trim(rest).empty()) {
+            fields.push_back(line.substr(open + 1, close - open - 1));
+            if (end == std::string_view::npos) return fields;
+            start = end + 1;
+            continue;
+          }
+        }
+      }
+    }
+    if (end == std::string_view::npos) {
       fields.push_back(line.substr(start));
       return fields;
     }
-    fields.push_back(line.substr(start, comma - start));
-    start = comma + 1;
+    fields.push_back(line.substr(start, end - start));
+    start = end + 1;
   }
+}
+
+std::string FormatNumber(double value) {
+  char buffer[40];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
 }
 
 std::string FormatNumber(double value, int significant) {
   char buffer[40];
   std::snprintf(buffer, sizeof(buffer), "%.*g", significant, value);
   return buffer;
+}
+
+namespace {
+
+// Optimal string alignment distance (Damerau-Levenshtein with each
+// transposition counted once), case-insensitive.
+size_t EditDistance(std::string_view a, std::string_view b) {
+  const std::string x = Lower(a), y = Lower(b);
+  std::vector<std::vector<size_t>> d(x.size() + 1,
+                                     std::vector<size_t>(y.size() + 1));
+  for (size_t i = 0; i <= x.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= y.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= x.size(); ++i) {
+    for (size_t j = 1; j <= y.size(); ++j) {
+      const size_t cost = x[i - 1] == y[j - 1] ? 0 : 1;
+      d[i][j] =
+          std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && x[i - 1] == y[j - 2] && x[i - 2] == y[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[x.size()][y.size()];
+}
+
+}  // namespace
+
+std::string DidYouMean(std::string_view given,
+                       const std::vector<std::string>& candidates,
+                       std::string_view prefix) {
+  if (given.empty() || given.size() > 64) return "";
+  const std::string lower = Lower(given);
+  const std::string* best = nullptr;
+  size_t best_distance = std::max<size_t>(1, given.size() / 3) + 1;
+  const std::string* extends = nullptr;  // the one candidate given starts
+  int extending = 0;
+  for (const std::string& candidate : candidates) {
+    const std::string name = Lower(candidate);
+    if (name == lower) continue;
+    if (name.rfind(lower, 0) == 0 || lower.rfind(name, 0) == 0) {
+      extends = &candidate;
+      ++extending;
+    }
+    const size_t distance = EditDistance(lower, name);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = &candidate;
+    }
+  }
+  if (best == nullptr && extending == 1) best = extends;
+  if (best == nullptr) return "";
+  return " (did you mean '" + std::string(prefix) + *best + "'?)";
 }
 
 std::string OneLine(std::string_view text) {

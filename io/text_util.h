@@ -49,13 +49,29 @@ bool EndsWith(std::string_view text, std::string_view suffix);
 // case ("G16.EXR").
 bool HasExtension(std::string_view path, std::string_view extension);
 
-// Splits `line` at every comma (no quoting); always at least one field.
-std::vector<std::string_view> SplitFields(std::string_view line);
+// Splits `line` at every `separator`; always at least one field. A field
+// in double quotes (spreadsheet CSV: "theta_i [deg]") may hold the
+// separator; its view is the text between the quotes (a doubled quote ""
+// inside stays doubled).
+std::vector<std::string_view> SplitFields(std::string_view line,
+                                          char separator = ',');
 
-// `value` printed with "%.*g" at `significant` digits: 17 (the default)
-// round-trips a double; fewer for labels ("%.3g"). The one number
-// formatter of clothfit's files, messages and charts.
-std::string FormatNumber(double value, int significant = 17);
+// `value` in the shortest form that reads back as the same double (0.35,
+// not 0.34999999999999998; 1e-05): the form of clothfit's files and
+// messages.
+std::string FormatNumber(double value);
+// `value` printed with "%.*g" at `significant` digits, for labels ("%.3g")
+// and for numbers known only to that precision.
+std::string FormatNumber(double value, int significant);
+
+// For an unknown name `given`: " (did you mean 'X'?)" naming the candidate
+// closest to it, when one is close (an edit distance, transpositions
+// counted once, of at most a third of its length, at least 1; or a prefix
+// of exactly one candidate, or a candidate that starts with it); else "".
+// `prefix` is put before the name in the message ("--" for options).
+std::string DidYouMean(std::string_view given,
+                       const std::vector<std::string>& candidates,
+                       std::string_view prefix = "");
 
 // `text` with newlines replaced by spaces, so it fits on one '#' line.
 std::string OneLine(std::string_view text);

@@ -593,7 +593,7 @@ TEST(CliTest, FitThatDoesNotConvergeExitsOne) {
       dir, {"fit", "--model", "thread", "--data", (dir / "T.csv").string(),
             "--max-iterations", "1", "--out", (dir / "fit.json").string()});
   EXPECT_EQ(r.status, 1) << Describe(r);
-  EXPECT_NE(r.err.find("without converging"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the fit did not converge"), std::string::npos) << r.err;
 }
 
 TEST(CliTest, FitBadUsage) {
@@ -1120,7 +1120,7 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
       RunClothfit(dir, {"fit", "--model", "lafortune", "--data", grid_table,
                         "--alternations", "1", "--out", again});
   EXPECT_EQ(capped.status, 1) << Describe(capped);
-  EXPECT_NE(capped.err.find("without converging"), std::string::npos)
+  EXPECT_NE(capped.err.find("the fit did not converge"), std::string::npos)
       << capped.err;
 }
 

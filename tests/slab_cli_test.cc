@@ -310,7 +310,7 @@ TEST(SlabCli, FitThatDoesNotConvergeExitsOne) {
       dir, {"fit", "--model", "slab", "--data", data, "--max-iterations", "1",
             "--starts", "1", "--out", (dir / "fit.json").string()});
   EXPECT_EQ(r.status, 1) << Describe(r);
-  EXPECT_NE(r.err.find("without converging"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the fit did not converge"), std::string::npos) << r.err;
 }
 
 TEST(SlabCli, BadInputExitsTwoWithOneMessage) {

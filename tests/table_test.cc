@@ -641,7 +641,7 @@ TEST(TableTest, NumbersAsStrtodSpellsThem) {
 TEST(TableTest, ALargeTableIsWrittenWholeInPieces) {
   MeasurementTable table = SampleTable(DirectionColumns::kAngles);
   const TableRow first = table.rows[0];
-  table.rows.assign(40000, first);
+  table.rows.assign(100000, first);
   for (size_t i = 0; i < table.rows.size(); ++i) {
     table.rows[i].value.x = 0.001 * static_cast<double>(i);
   }
