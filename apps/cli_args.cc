@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/progress.h"
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
@@ -35,6 +36,10 @@ void CommandArgs::Fail(const std::string& message) const {
 }
 
 bool CommandArgs::Parse(int argc, char** argv, int first) {
+  // Every command's: long work draws a progress line on a terminal.
+  if (!specs_.count("quiet")) {
+    Flag("quiet", "no progress line on the terminal (warnings still shown)");
+  }
   for (int i = first; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
@@ -84,6 +89,7 @@ bool CommandArgs::Parse(int argc, char** argv, int first) {
     values_[name] = value;
   }
   CheckFiles();
+  progress::SetQuiet(Has("quiet"));
   return true;
 }
 

@@ -9,6 +9,7 @@
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "holes/hole_texture.h"
 #include "io/text_util.h"
 #include "models/presets.h"
@@ -33,6 +34,13 @@ ParamFile LoadModelOption(const CommandArgs& args,
   }
   if (args.Has(file_option)) return ReadParamFile(args.Get(file_option));
   return ParamFile{RequirePreset(args, args.Get("preset")), ""};
+}
+
+void WriteTableWithProgress(const MeasurementTable& table,
+                            const std::string& path) {
+  progress::Task task("writing " + path, "rows");
+  WriteTable(table, path,
+             [&task](double done, double total) { task.Update(done, total); });
 }
 
 ClothParams RequirePreset(const CommandArgs& args, const std::string& name) {

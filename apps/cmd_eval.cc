@@ -5,6 +5,7 @@
 
 #include "api/material.h"
 #include "apps/commands.h"
+#include "apps/progress.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 
@@ -106,12 +107,17 @@ int RunEval(int argc, char** argv) {
     EvaluateMipmap(args, &table);
   } else {
     table.SetMeta("model", ModelName(model->params));
-    for (TableRow& row : table.rows) {
+    progress::Task task("eval", "rows");
+    const size_t rows = table.rows.size();
+    for (size_t i = 0; i < rows; ++i) {
+      TableRow& row = table.rows[i];
       row.value = Evaluate(model->params, row.wi, row.wo, table.quantity);
+      if (i % 4096 == 4095) task.Update(i + 1.0, rows);
     }
+    task.Update(rows, rows);
   }
   for (TableRow& row : table.rows) row.sigma = glm::dvec3(1.0);
-  WriteTable(table, out_path);
+  WriteTableWithProgress(table, out_path);
   if (model) {
     if (const auto* slab = std::get_if<SlabParams>(&model->params)) {
       if (table.quantity != Quantity::kTransmittance) NoteSlabRegime(*slab);

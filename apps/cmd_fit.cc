@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <utility>
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "fitting/cloth_fit.h"
 #include "fitting/energy.h"
 #include "fitting/model_selection.h"
@@ -129,12 +131,13 @@ SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss) {
           "a floor");
     }
   }
-  // A progress line on a terminal, overwritten in place.
-  if (isatty(STDERR_FILENO)) {
-    s.progress = [](const std::string& what) {
-      std::cerr << "\r\033[Kfit: " << what << "..." << std::flush;
-    };
-  }
+  // The work starts: the input's warnings, then a progress line on a
+  // terminal.
+  auto task = std::make_shared<progress::Task>("fit", "");
+  s.progress = [task](const std::string& what) {
+    progress::FlushWarnings();
+    task->Say(what);
+  };
   return s;
 }
 
@@ -142,14 +145,16 @@ MeasurementTable ReadTableOption(const CommandArgs& args,
                                  const std::string& path,
                                  ReadTableOptions read_options) {
   read_options.skip_invalid = args.Has("skip-invalid");
+  progress::Task task("reading " + path, "MB");
+  read_options.progress = [&task](double done, double total) {
+    task.Update(done / 1e6, total / 1e6);
+  };
   ReadTableResult read = ReadTable(path, read_options);
   if (read.skipped > 0) {
-    std::cerr << "warning: skipped " << read.skipped
-              << " invalid row(s); first: " << read.first_skip_reason << "\n";
+    progress::Warn("skipped " + std::to_string(read.skipped) +
+                   " invalid row(s); first: " + read.first_skip_reason);
   }
-  for (const std::string& warning : read.warnings) {
-    std::cerr << "warning: " << warning << "\n";
-  }
+  for (const std::string& warning : read.warnings) progress::Warn(warning);
   return std::move(read.table);  // not a copy: ~150 bytes a row
 }
 
@@ -157,10 +162,10 @@ void WarnArbitraryScale(const CommandArgs& args,
                         const MeasurementTable& table) {
   if (args.Has("fit-scale")) return;
   if (const std::optional<std::string> note = ArbitraryScaleNote(table)) {
-    std::cerr << "warning: " << table.source << ": its metadata says '"
-              << text_util::EscapeControl(*note)
-              << "': a physically based model fits values on an arbitrary "
-                 "scale only with --fit-scale (a factor on the model)\n";
+    progress::Warn(table.source + ": its metadata says '" +
+                   text_util::EscapeControl(*note) +
+                   "': a physically based model fits values on an arbitrary "
+                   "scale only with --fit-scale (a factor on the model)");
   }
 }
 
@@ -181,7 +186,8 @@ int FinishFit(const FitReport& report, const std::vector<double>& truth,
               const std::function<void(const std::string&)>& write,
               const std::string& preface,
               const std::string& identifiability_hint) {
-  if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
+  progress::FlushWarnings();
+  progress::Clear();
   std::cout << preface << FitReportText(report, truth);
   if (!report.usable) {
     std::cerr << "error: the fit did not reach a usable solution: "

@@ -1,15 +1,15 @@
 // clothfit fit --model lafortune: Lafortune lobes with per-view lookup
 // tables (Daubert et al. 2001) for one table, or per texel and mip level
 // for a spatially varying table or image stack.
-#include <unistd.h>
-
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_level_select.h"
 #include "fitting/lafortune_mip.h"
@@ -20,19 +20,6 @@
 #include "io/text_util.h"
 
 namespace clothfit {
-namespace {
-
-// A progress bar on a terminal: "[#####.....] 512/1365 texels".
-void ShowProgress(int done, int total) {
-  constexpr int kWidth = 30;
-  const int filled = total > 0 ? done * kWidth / total : kWidth;
-  std::cerr << "\r\033[K[" << std::string(filled, '#')
-            << std::string(kWidth - filled, '.') << "] " << done << "/" << total
-            << " texel fits" << std::flush;
-  if (done == total) std::cerr << "\n";
-}
-
-}  // namespace
 
 int RunFitLafortune(int argc, char** argv) {
   CommandArgs args(
@@ -253,13 +240,15 @@ int RunFitLafortune(int argc, char** argv) {
         "a table with s,t columns gives a model per texel: --out must "
         "be an .exr file");
   }
-  if (isatty(STDERR_FILENO)) options.progress = ShowProgress;
+  progress::FlushWarnings();  // the work starts
+  auto task = std::make_shared<progress::Task>("fit", "texel fits");
+  options.progress = [task](int done, int total) { task->Update(done, total); };
   LafortuneMipResult result;
   std::string selection_json;  // with --select: metadata.fit.selection
   if (select) {
     LafortuneLevelSelection chosen =
         SelectLafortuneLevelHeldOut(table, options, static_cast<int>(folds));
-    if (isatty(STDERR_FILENO)) std::cerr << "\r\033[K" << std::flush;
+    progress::Clear();
     std::cout << SelectionReportText(chosen.report);
     if (chosen.level < 0) {
       std::cerr << "error: --select heldout: " << chosen.report.reason

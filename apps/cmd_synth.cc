@@ -4,6 +4,7 @@
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "data_synthetic/synthetic_table.h"
 #include "data_synthetic/virtual_gonio.h"
 #include "io/image_stack.h"
@@ -44,6 +45,8 @@ int RunGonio(const CommandArgs& args) {
 #ifdef CLOTHFIT_LIGHT
   if (args.Has("stack")) RunInFullBinary();  // images
 #endif
+  progress::Task task("synth", "texels");
+  options.progress = [&task](int done, int total) { task.Update(done, total); };
   const MeasurementTable table = MeasureVirtualGonio(options);
   if (args.Has("stack")) {
     const std::string ext = args.Get("image-ext");
@@ -54,7 +57,7 @@ int RunGonio(const CommandArgs& args) {
     WriteImageStack(table, args.Get("stack"), ext, true);
 #endif
   } else {
-    WriteTable(table, args.Required("out"));
+    WriteTableWithProgress(table, args.Required("out"));
   }
   return 0;
 }
@@ -168,7 +171,7 @@ int RunSynth(int argc, char** argv) {
   sample << ", noise " << text_util::FormatNumber(options.noise, 6) << ", seed "
          << seed;
   table.SetMeta("sample", sample.str());
-  WriteTable(table, out_path);
+  WriteTableWithProgress(table, out_path);
   if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
     NoteSlabRegime(*slab);
   }

@@ -88,6 +88,9 @@ SolverOptions ReadSolverOptions(const CommandArgs& args, bool robust_loss);
 MeasurementTable ReadTableOption(const CommandArgs& args,
                                  const std::string& path,
                                  ReadTableOptions read_options = {});
+// WriteTable with a progress line ("writing PATH") on a terminal.
+void WriteTableWithProgress(const MeasurementTable& table,
+                            const std::string& path);
 // A warning when `table`'s metadata says its values are on an arbitrary
 // scale and --fit-scale is not given.
 void WarnArbitraryScale(const CommandArgs& args, const MeasurementTable& table);

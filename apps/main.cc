@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 
@@ -104,6 +105,8 @@ int UnknownCommand(const std::string& context, const std::string& name) {
 // output: a failed write of standard output (a full disk) is an error,
 // never exit 0. Both streams: the summaries use std::cout and printf.
 int Finish(int status) {
+  clothfit::progress::FlushWarnings();
+  clothfit::progress::Clear();
   std::cout.flush();
   const bool failed =
       !std::cout || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
@@ -154,6 +157,7 @@ int main(int argc, char** argv) {
   try {
     return Finish(c->run(argc, argv));
   } catch (const clothfit::InputError& e) {
+    clothfit::progress::Clear();
     std::cerr << "error: " << clothfit::text_util::EscapeControl(e.what())
               << "\n";
     return 2;

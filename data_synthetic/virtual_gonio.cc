@@ -24,6 +24,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -249,9 +250,15 @@ MeasurementTable MeasureVirtualGonio(const VirtualGonioOptions& options) {
                     : static_cast<int>(std::thread::hardware_concurrency());
   workers = std::max(1, std::min(workers, texel_count));
   std::atomic<int> next{0};
+  int done = 0;
+  std::mutex progress_mutex;
   auto work = [&]() {
     for (int texel = next++; texel < texel_count; texel = next++) {
       measure_texel(texel);
+      if (options.progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        options.progress(++done, texel_count);
+      }
     }
   };
   if (workers == 1) {

@@ -53,6 +53,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "io/table.h"
@@ -76,6 +77,9 @@ struct VirtualGonioOptions {
   // Worker threads (texels are shared out among them); 0 =
   // std::thread::hardware_concurrency(). The result does not depend on it.
   int threads = 0;
+  // Called with the texels measured so far and their count, from one
+  // thread at a time (for a progress line); may be empty.
+  std::function<void(int done, int total)> progress;
 };
 
 // The measured table: quantity cosine_weighted (radiance per unit

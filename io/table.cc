@@ -99,6 +99,10 @@ ReadTableResult ReadTable(const std::string& path,
   bool reserved = error.value() != 0;
   ReadFileInChunks(path, [&](std::string_view chunk) {
     bytes_read += chunk.size();
+    if (options.progress && error.value() == 0) {
+      options.progress(static_cast<double>(bytes_read),
+                       static_cast<double>(file_bytes));
+    }
     size_t start = 0;
     while (true) {
       const size_t end = chunk.find('\n', start);
@@ -156,7 +160,8 @@ void AppendAngles(const glm::dvec3& w, std::string* out) {
 // The text of FormatTable, handed to `sink` in pieces of about 1 MiB (a
 // table of millions of rows is never held as one string).
 void FormatTableTo(const MeasurementTable& table,
-                   const std::function<void(const std::string&)>& sink) {
+                   const std::function<void(const std::string&)>& sink,
+                   const TableProgress& progress = {}) {
   constexpr size_t kPiece = 1 << 20;
   const bool vectors = table.direction_columns == DirectionColumns::kVectors;
   // Transmittance tables leave out the incident direction unless a row has
@@ -210,7 +215,9 @@ void FormatTableTo(const MeasurementTable& table,
   out += '\n';
 
   std::vector<double> numbers;
+  size_t rows_done = 0;
   for (const TableRow& row : table.rows) {
+    ++rows_done;
     numbers.clear();
     std::string angles;  // "theta,phi," of each direction written as angles
     auto add_direction = [&](const glm::dvec3& w) {
@@ -251,6 +258,10 @@ void FormatTableTo(const MeasurementTable& table,
     if (out.size() >= kPiece) {
       sink(out);
       out.clear();
+      if (progress) {
+        progress(static_cast<double>(rows_done),
+                 static_cast<double>(table.rows.size()));
+      }
     }
   }
   sink(out);
@@ -291,10 +302,12 @@ std::string FormatTable(const MeasurementTable& table) {
   return text;
 }
 
-void WriteTable(const MeasurementTable& table, const std::string& path) {
+void WriteTable(const MeasurementTable& table, const std::string& path,
+                const TableProgress& progress) {
   CheckRowsReadable(table, path);
   OutputFile out(path);
-  FormatTableTo(table, [&](const std::string& piece) { out.Write(piece); });
+  FormatTableTo(
+      table, [&](const std::string& piece) { out.Write(piece); }, progress);
   out.Commit();
 }
 

@@ -11,6 +11,7 @@
 // three components of `value` so that models can be evaluated per channel.
 #pragma once
 
+#include <functional>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
@@ -81,6 +82,9 @@ struct ReadTableOptions {
   // Accept a table without value columns (a list of directions, as
   // `clothfit eval --dirs` takes); values are then 0 and channels 3.
   bool values_optional = false;
+  // ReadTable: called after each piece of the file with the bytes read so
+  // far and the file's size (for a progress line); may be empty.
+  std::function<void(double bytes_read, double bytes_total)> progress;
 };
 
 struct ReadTableResult {
@@ -112,7 +116,11 @@ ReadTableResult ParseTable(const std::string& text, const std::string& name,
 // angles to 15 significant digits, metadata first). The file is written
 // to a temporary name and renamed into place when complete. Throws
 // InputError if the path cannot be written.
-void WriteTable(const MeasurementTable& table, const std::string& path);
+// `progress`, if given, is called after each piece (about 1 MiB) with the
+// rows written so far and their count.
+using TableProgress = std::function<void(double done, double total)>;
+void WriteTable(const MeasurementTable& table, const std::string& path,
+                const TableProgress& progress = {});
 std::string FormatTable(const MeasurementTable& table);
 
 // Spherical angles (radians) <-> unit vectors, SPEC §1.

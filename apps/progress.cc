@@ -1,0 +1,119 @@
+#include "apps/progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "io/text_util.h"
+
+namespace clothfit {
+namespace progress {
+namespace {
+
+bool quiet = false;
+bool line_shown = false;  // a progress line is on the terminal
+std::vector<std::string>& HeldWarnings() {
+  static std::vector<std::string> warnings;
+  return warnings;
+}
+
+std::string Duration(double seconds) {
+  if (seconds < 120.0) {
+    return std::to_string(static_cast<long>(std::lround(seconds))) + " s";
+  }
+  return std::to_string(static_cast<long>(std::lround(seconds / 60.0))) +
+         " min";
+}
+
+std::string Count(double x) {
+  return text_util::FormatNumber(std::round(x * 10.0) / 10.0);
+}
+
+void Draw(const std::string& text) {
+  std::fprintf(stderr, "\r\033[K%s", text.c_str());
+  std::fflush(stderr);
+  line_shown = true;
+}
+
+}  // namespace
+
+void SetQuiet(bool q) { quiet = q; }
+
+bool Enabled() { return !quiet && isatty(STDERR_FILENO) == 1; }
+
+std::string Line(const std::string& what, double done, double total,
+                 const std::string& unit, double elapsed_s) {
+  constexpr int kWidth = 20;
+  const double share = total > 0.0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
+  const int filled = static_cast<int>(share * kWidth);
+  std::string line = what + ": [" + std::string(filled, '#') +
+                     std::string(kWidth - filled, '.') + "] " + Count(done) +
+                     "/" + Count(total) + (unit.empty() ? "" : " " + unit) +
+                     ", " + Duration(elapsed_s);
+  if (share > 0.0 && share < 1.0 && elapsed_s >= 1.0) {
+    line += ", about " + Duration(elapsed_s * (1.0 - share) / share) + " left";
+  }
+  return line;
+}
+
+Task::Task(std::string what, std::string unit)
+    : what_(std::move(what)),
+      unit_(std::move(unit)),
+      start_(std::chrono::steady_clock::now()) {}
+
+bool Task::Due(bool last) {
+  if (!Enabled()) return false;
+  const auto now = std::chrono::steady_clock::now();
+  // Work shorter than half a second draws nothing (no flicker).
+  if (now - start_ < std::chrono::milliseconds(500)) return false;
+  if (!last && drawn_ && now - last_draw_ < std::chrono::milliseconds(100)) {
+    return false;
+  }
+  if (!drawn_) FlushWarnings();  // the input's warnings before the work
+  last_draw_ = now;
+  drawn_ = true;
+  return true;
+}
+
+void Task::Update(double done, double total) {
+  if (done >= total) {  // finished: the line goes
+    if (drawn_) Clear();
+    return;
+  }
+  if (!Due(false)) return;
+  const double elapsed =
+      std::chrono::duration<double>(last_draw_ - start_).count();
+  Draw(Line(what_, done, total, unit_, elapsed));
+}
+
+void Task::Say(const std::string& text) {
+  if (!Due(false)) return;
+  const double elapsed =
+      std::chrono::duration<double>(last_draw_ - start_).count();
+  Draw(what_ + ": " + text + " (" + Duration(elapsed) + ")");
+}
+
+void Clear() {
+  if (!line_shown) return;
+  std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+  line_shown = false;
+}
+
+void Warn(const std::string& text) { HeldWarnings().push_back(text); }
+
+void FlushWarnings() {
+  if (HeldWarnings().empty()) return;
+  Clear();
+  for (const std::string& text : HeldWarnings()) {
+    std::fprintf(stderr, "warning: %s\n", text.c_str());
+  }
+  HeldWarnings().clear();
+}
+
+}  // namespace progress
+}  // namespace clothfit
