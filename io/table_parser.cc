@@ -63,7 +63,15 @@ void TableParser::ParseMetadata(std::string_view content, int line) {
   if (colon == std::string_view::npos) return;  // A comment.
   const std::string key = Lower(Trim(content.substr(0, colon)));
   const std::string value(Trim(content.substr(colon + 1)));
-  if (key.empty() || key == "clothfit-table") return;
+  if (key.empty()) return;
+  if (key == "clothfit-table") {  // "# clothfit-table: N", the same line
+    if (value != "1") {
+      Fail(line, 0,
+           "unsupported table format version " + Quote(value) +
+               " (this clothfit reads '# clothfit-table 1')");
+    }
+    return;
+  }
   MeasurementTable& table = result_.table;
   if (key == "quantity") {
     const std::optional<Quantity> quantity = ParseQuantity(value);

@@ -141,6 +141,19 @@ TEST(TableInput, UnknownOrContradictoryUnitsAreBadInput) {
             std::string::npos);
 }
 
+TEST(TableInput, TheFormatVersionIsCheckedWithOrWithoutAColon) {
+  const std::string rows =
+      std::string("theta_i,phi_i,theta_o,phi_o,value\n") + kRows;
+  for (const char* line : {"# clothfit-table 2\n", "# clothfit-table: 2\n"}) {
+    EXPECT_NE(ParseError(line + rows)
+                  .find("unsupported table format version "
+                        "'2'"),
+              std::string::npos)
+        << line;
+  }
+  ExpectSameRows(ParseTable("# clothfit-table: 1\n" + rows, "d.csv").table);
+}
+
 TEST(TableInput, UnknownColumnNamesTheClosestOne) {
   const std::string message =
       ParseError("theta_i,phi_i,theta_o,phi_o,vaule\n10,0,20,180,0.25\n");
