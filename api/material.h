@@ -18,9 +18,9 @@
 // peak: docs/renderer.md), the slab and holes in double; its values are
 // finite (saturated at the largest float).
 //
-// Directions are unit vectors in the surface frame (SPEC §1: normal +z,
+// Directions are unit vectors in the surface frame (docs/formats.md: normal +z,
 // warp/u along +x, weft/v along +y), both pointing away from the surface;
-// for a thread file, in the thread frame (tangent +x, SPEC §3.1).
+// for a thread file, in the thread frame (tangent +x, docs/models.md).
 // Loading throws InputError (io/input_error.h) naming the file and the
 // problem. Evaluation never throws, never allocates, and only reads the
 // loaded data, so any number of threads may evaluate one Material at once.
@@ -66,8 +66,8 @@ struct BsdfSampleT {
 template <typename Real>
 class MaterialT {
  public:
-  // A parameter file of any model (SPEC §4: thread, cloth, lafortune, slab;
-  // holes when the file holds its mask's tile, as `clothfit fit --model
+  // A parameter file of any model (docs/formats.md: thread, cloth, lafortune,
+  // slab; holes when the file holds its mask's tile, as `clothfit fit --model
   // holes` and `clothfit holes tile` write it) or, for a path ending in
   // ".exr", a parameter mip map written by
   // `clothfit fit --model lafortune` on a table with s,t columns, looked

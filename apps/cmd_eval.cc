@@ -1,4 +1,4 @@
-// clothfit eval: a model's values at the directions of a table (SPEC §5),
+// clothfit eval: a model's values at the directions of a table (docs/cli.md),
 // or a Lafortune parameter mip map's at the texels of the table's rows.
 #include <optional>
 #include <string>
@@ -63,13 +63,15 @@ int RunEval(int argc, char** argv) {
       "O.csv [--quantity brdf|cosine_weighted]",
       "Evaluates the model of P.json at every direction pair of D.csv and "
       "writes D's rows with the model's r,g,b.\nD.csv is a measurement table "
-      "(SPEC §2); its value columns, if any, are ignored.\nFor a thread model "
+      "(docs/formats.md); its value columns, if any, are ignored.\nFor a "
+      "thread model "
       "the directions are in the thread frame (tangent +x, normal +z).\nA "
       "slab gives f_r or f_t (wo on the far side), and for a transmittance "
       "table D the direct transmittance.\nP.exr, a Lafortune parameter mip "
       "map (fit --model lafortune on a table with s,t columns), is evaluated\n"
       "at each row's texel: D needs s,t columns, texel indices of level L.");
-  args.Option("params", "P.json", "parameter file (SPEC §4) or mip map P.exr");
+  args.Option("params", "P.json",
+              "parameter file (docs/formats.md) or mip map P.exr");
   args.Option("preset", "NAME", "a preset instead of --params");
   args.Option("dirs", "D.csv", "directions (a measurement table)");
   args.Option("out", "O.csv", "output table");

@@ -1,4 +1,4 @@
-// clothfit fit: fits a model's parameters to a measurement table (SPEC §5).
+// clothfit fit: fits a model's parameters to a measurement table (docs/cli.md).
 #include <unistd.h>
 
 #include <algorithm>
@@ -300,7 +300,7 @@ int RunFit(int argc, char** argv) {
               "sheen: the glTF cloth material; auto: picks "
               "the family by held-out error (docs/fitting.md)");
   args.Option("data", "T.csv",
-              "measurement table (SPEC §2); slab: A.csv,B.csv,... ");
+              "measurement table (docs/formats.md); slab: A.csv,B.csv,... ");
   args.Option("init", "P.json", "initial parameters");
   args.Option("preset", "NAME", "initial parameters from a preset (cloth)");
   args.Option("out", "P.json", "result parameter file");

@@ -37,7 +37,8 @@ int RunFitLafortune(int argc, char** argv) {
       "mip-mapped OpenEXR (one channel per parameter) with a JSON index "
       "(P.exr.json).");
   args.Option("model", "M", "lafortune");
-  args.Option("data", "T.csv", "measurement table (SPEC §2), s,t optional");
+  args.Option("data", "T.csv",
+              "measurement table (docs/formats.md), s,t optional");
   args.Option("stack", "M.csv", "image-stack manifest instead of --data");
   args.Option("out", "P.json|P.exr",
               "result: JSON for one model, EXR per texel");

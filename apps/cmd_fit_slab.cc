@@ -1,5 +1,5 @@
 // clothfit fit --model slab: tau and albedo of the optically thin slab
-// (SPEC §3.4) from one or more tables, with the validity report.
+// (docs/models.md) from one or more tables, with the validity report.
 #include <iostream>
 
 #include "apps/commands.h"

@@ -1,5 +1,5 @@
 // clothfit holes analyze|eval|truth and clothfit fit --model holes:
-// semi-transparent textures with thickness (David-Babin 2022; SPEC §3.5;
+// semi-transparent textures with thickness (David-Babin 2022; docs/models.md;
 // docs/holes.md).
 #include <chrono>
 #include <cstdio>
@@ -388,7 +388,7 @@ int RunFitHoles(int argc, char** argv) {
       "(standard deviations).\nExit status 1 when the fit reaches no usable "
       "solution or does not converge.");
   args.Option("model", "M", "holes");
-  args.Option("data", "T.csv", "transmittance table (SPEC §2)");
+  args.Option("data", "T.csv", "transmittance table (docs/formats.md)");
   AddMaskOptions(&args);
   args.Option("out", "P.json", "result parameter file");
   args.Option("init", "P.json", "initial parameters (a holes file)");

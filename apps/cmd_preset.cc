@@ -1,4 +1,4 @@
-// clothfit preset NAME / clothfit presets (SPEC §5).
+// clothfit preset NAME / clothfit presets (docs/cli.md).
 #include <iostream>
 
 #include "apps/commands.h"

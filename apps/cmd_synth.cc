@@ -1,4 +1,4 @@
-// clothfit synth: synthetic measurement tables from parameters (SPEC §5).
+// clothfit synth: synthetic measurement tables from parameters (docs/cli.md).
 #include <iomanip>
 #include <sstream>
 
@@ -88,7 +88,7 @@ int RunSynth(int argc, char** argv) {
       "With --noise the table gets sigma = noise * clean value per channel. "
       "Thread models write thread-frame\ntables (wi above, wo anywhere on the "
       "sphere); cloth models reflection tables. Deterministic from --seed.");
-  args.Option("params", "P.json", "parameter file (SPEC §4)");
+  args.Option("params", "P.json", "parameter file (docs/formats.md)");
   args.Option("preset", "NAME", "a preset instead of --params");
   args.Option("out", "T.csv", "output table");
   args.Option("rows", "N", "number of random direction pairs", "2000");

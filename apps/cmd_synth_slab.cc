@@ -1,6 +1,7 @@
-// clothfit synth --model slab: tables of the optically thin slab (SPEC §3.4)
-// from its single-scattering formulas or from Monte Carlo ground truth, and
-// the chart of the formulas' error against Monte Carlo over tau x albedo.
+// clothfit synth --model slab: tables of the optically thin slab
+// (docs/models.md) from its single-scattering formulas or from Monte Carlo
+// ground truth, and the chart of the formulas' error against Monte Carlo over
+// tau x albedo.
 #include <iostream>
 #include <sstream>
 
@@ -123,7 +124,8 @@ int RunSynthSlab(int argc, char** argv) {
       "[--noise F] [--theta-i LIST] [--theta-o LIST] [--seed S]\n"
       "       clothfit synth --model slab --error-map M.png [--csv M.csv] "
       "[--taus LIST] [--albedos LIST] [--photons N] [--seed S]",
-      "Tables of the optically thin slab (SPEC §3.4; docs/slab.md) for beams "
+      "Tables of the optically thin slab (docs/models.md; docs/slab.md) for "
+      "beams "
       "at --theta-i (phi 0) and views at --theta-o:\n--out gets a BSDF "
       "table with reflection rows (theta_o, wo.z > 0) and transmission rows "
       "(180 - theta_o, wo.z < 0),\n--transmittance a direct-transmittance "
@@ -135,7 +137,7 @@ int RunSynthSlab(int argc, char** argv) {
       "the formulas' relative rms error against Monte Carlo over --taus x "
       "--albedos, a PNG heat map and its CSV.");
   args.Option("model", "slab", "slab");
-  args.Option("params", "P.json", "slab parameter file (SPEC §4)");
+  args.Option("params", "P.json", "slab parameter file (docs/formats.md)");
   args.Option("tau", "T[,T,T]", "optical thickness, one or per channel");
   args.Option("albedo", "A[,A,A]", "single-scattering albedo (with --tau)",
               "1");

@@ -61,7 +61,7 @@ std::vector<double> NumberListOption(const CommandArgs& args,
 // commands that dispatch on it before parsing their options).
 std::string ModelArgument(int argc, char** argv, int first = 2);
 
-// SPEC §3.4: where the slab's single-scattering form is not accurate, the
+// docs/models.md: where the slab's single-scattering form is not accurate, the
 // tool says so. When `p` lies outside the model's regime (the estimated
 // error SlabParamsSingleScatterError above kSlabRegimeTolerance, the rule of
 // fit --model slab's validity report), prints one line on stderr starting

@@ -1,4 +1,4 @@
-// clothfit: fits cloth appearance models to measurement tables (SPEC §5).
+// clothfit: fits cloth appearance models to measurement tables (docs/cli.md).
 #include <glog/logging.h>
 
 #include <cerrno>

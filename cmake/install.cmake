@@ -58,6 +58,10 @@ install(EXPORT clothfit_targets NAMESPACE clothfit::
 install(TARGETS clothfit clothfit-full RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${CMAKE_SOURCE_DIR}/CHANGELOG.md ${CMAKE_SOURCE_DIR}/README.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# docs/ (formats, models, the command line, design notes, measurements and
+# their pictures) beside the README, as the help and the README cite it.
+install(DIRECTORY ${CMAKE_SOURCE_DIR}/docs/
+        DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
 
 configure_package_config_file(
   ${CMAKE_SOURCE_DIR}/cmake/clothfit-config.cmake.in

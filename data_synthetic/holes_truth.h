@@ -1,4 +1,4 @@
-// Ground truth for semi-transparent textures with thickness (SPEC §3.5):
+// Ground truth for semi-transparent textures with thickness (docs/models.md):
 // each view ray is traced exactly through the tiled texel grid (the 2D DDA
 // of Amanatides and Woo 1987, as in David-Babin 2022 §4.2, Fig. 4.10)
 // against the columns of height h, and the outcomes are averaged over a

@@ -71,7 +71,8 @@ SlabErrorMap ComputeSlabErrorMap(const SlabErrorMapOptions& options) {
 std::string SlabErrorMapCsv(const SlabErrorMap& map) {
   const SlabErrorMapOptions& o = map.options;
   std::string out =
-      "# single-scattering slab (SPEC 3.4) against Monte Carlo, all orders; " +
+      "# single-scattering slab (docs/models.md) against Monte Carlo, all "
+      "orders; " +
       std::to_string(o.photons) + " photons per beam, seed " +
       std::to_string(o.seed) + "\n" +
       "tau,albedo,relative_rms_error,max_relative_error,relative_noise,"

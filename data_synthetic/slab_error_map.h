@@ -1,7 +1,7 @@
-// Where the single-scattering slab fails: the error of SPEC §3.4's formulas
-// against Monte Carlo ground truth (all orders of scattering) over a grid
-// of optical thickness x albedo, written as a PNG heat map (OpenCV) and the
-// CSV behind it.
+// Where the single-scattering slab fails: the error of docs/models.md's
+// formulas against Monte Carlo ground truth (all orders of scattering) over a
+// grid of optical thickness x albedo, written as a PNG heat map (OpenCV) and
+// the CSV behind it.
 //
 // Per grid cell (tau, A), with the Monte Carlo f_r, f_t at the beams and
 // views of the options (data_synthetic/slab_monte_carlo.h):

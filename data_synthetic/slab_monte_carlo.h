@@ -1,6 +1,7 @@
-// Monte Carlo ground truth for the slab of SPEC §3.4: the same plane-parallel
-// layer (optical thickness tau, single-scattering albedo A, isotropic
-// scattering) with every order of scattering, lit by collimated beams.
+// Monte Carlo ground truth for the slab of docs/models.md: the same
+// plane-parallel layer (optical thickness tau, single-scattering albedo A,
+// isotropic scattering) with every order of scattering, lit by collimated
+// beams.
 //
 // Method (per beam; docs/slab.md has the derivation):
 //  - Photons start at the lit face with weight 1 per channel (unit
@@ -56,7 +57,7 @@ struct SlabMonteCarloOptions {
   int64_t photons = 100000;  // per beam, [1, 1e10]
   uint64_t seed = 1;
   // Highest scattering order scored: 0 = all (the ground truth); 1 = single
-  // scattering only, which is what SPEC §3.4's formulas describe.
+  // scattering only, which is what docs/models.md's formulas describe.
   int max_order = 0;
   int histogram_bins = 10;  // escape histogram, uniform in |mu|, [1, 1000]
   int threads = 0;          // 0 = std::thread::hardware_concurrency()
@@ -116,7 +117,7 @@ SlabTables SlabModelTables(const SlabParams& params,
                            const std::vector<double>& theta_o_deg,
                            const SynthOptions& synth, Random* random);
 
-// The simulation as SPEC §2 tables, r,g,b with sigma_r,g,b = standard
+// The simulation as docs/formats.md tables, r,g,b with sigma_r,g,b = standard
 // error (floored at 1e-12, as synthetic tables, where a score had no
 // variance). Quantity brdf
 // or cosine_weighted (f |wi.z|); rows as SlabBsdfRows. Metadata: sample,

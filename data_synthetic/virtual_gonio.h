@@ -8,11 +8,12 @@
 // tangent, coloured threads). Deterministic from a seed.
 //
 // Geometry (tile [0,1)^2, periodic). Warp threads run along +x, weft threads
-// along +y (SPEC §1). A thread's cross-section is a half-ellipse: half-width
-// w on the ground plane, half-height r_z above its centre line, whose height
-// undulates between crossings (over: +A, under: -A, A = 0.55 r_z, cosine
-// interpolation between crossings). The surface is the highest thread over
-// (x, y); where no thread lies there is a hole and the viewer sees through.
+// along +y (docs/formats.md). A thread's cross-section is a half-ellipse:
+// half-width w on the ground plane, half-height r_z above its centre line,
+// whose height undulates between crossings (over: +A, under: -A, A = 0.55 r_z,
+// cosine interpolation between crossings). The surface is the highest thread
+// over (x, y); where no thread lies there is a hole and the viewer sees
+// through.
 //   plain: 2 warps x 2 wefts per tile, over/under at every crossing.
 //   satin: 5 x 5 per tile, 5-harness warp-faced satin (move 2): each warp
 //          floats over 4 wefts and passes under 1.

@@ -24,7 +24,7 @@ struct TriangleMesh {
 // A square sheet of side 2 (metres) in the x-y plane, +z up, draped in two
 // soft folds along y: z = 0.12 cos(1.5 pi x) (1 - 0.3 y^2), on an n x n
 // grid of quads (n >= 1), normals from the surface's derivatives; u along
-// x (the warp, SPEC §1), v along y (the weft).
+// x (the warp, docs/formats.md), v along y (the weft).
 TriangleMesh ClothMesh(int n = 48);
 
 // A texture map's textures as PNG files (export/png.h; empty: none):

@@ -150,8 +150,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
         "cloth fit: the initial parameters need 1 to 3 threads, got " +
         std::to_string(init.threads.size()));
   }
-  // The cloth model is reflection only (SPEC §3.2): a row with the light or
-  // the view below the surface tells nothing about it. Such rows are left
+  // The cloth model is reflection only (docs/models.md): a row with the light
+  // or the view below the surface tells nothing about it. Such rows are left
   // out and counted, not fitted as zeros.
   const int not_reflection = CountNotReflection(table, "cloth");
   if (not_reflection > 0) {

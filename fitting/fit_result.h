@@ -1,4 +1,4 @@
-// What every fit reports, for every model (SPEC §4 "fit" object): cost,
+// What every fit reports, for every model (docs/formats.md "fit" object): cost,
 // errors, iterations, time, termination, and per-parameter standard
 // deviations, or an honest statement of which parameters the data cannot
 // determine. One type, one JSON layout (FitReportJson).

@@ -1,6 +1,6 @@
 // Fits the thickness h (and optionally the wall colour) of a holed layer
-// (David-Babin 2022; SPEC §3.5) to a table of measured transmittance versus
-// view direction (quantity: transmittance; only wo is used) for a given
+// (David-Babin 2022; docs/models.md) to a table of measured transmittance
+// versus view direction (quantity: transmittance; only wo is used) for a given
 // mask's tile: model = rho_transparent + wall_color rho_occluded of the
 // whole tile (models/holes_tile.h HolesTransmittance), with the ratios of
 // Algorithm 3.1 or of the extension. The tile (a level of the mask's

@@ -1,5 +1,5 @@
 // Fits Lafortune lobes with a per-view lookup table (Daubert et al. 2001,
-// Section 5; SPEC §3.3) to the samples of one texel (or one whole table):
+// Section 5; docs/models.md) to the samples of one texel (or one whole table):
 // a first pass of the lobes by Levenberg-Marquardt with T = 1 (or a warm
 // start's T), then by default the lobes and T jointly
 // (LafortuneSolve::kJoint), or as the paper alternately the lobes with T

@@ -1,4 +1,4 @@
-// Fits the optically thin slab (SPEC §3.4; Frisvad et al.) to one or more
+// Fits the optically thin slab (docs/models.md; Frisvad et al.) to one or more
 // tables: BSDF tables (brdf or cosine_weighted) whose rows may be reflection
 // (wo on the side of wi) or transmission (far side), and direct-transmittance
 // tables (quantity transmittance, D(|wo.z|) = exp(-tau/|wo.z|)). Free: tau

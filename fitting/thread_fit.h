@@ -1,5 +1,5 @@
 // Fits the thread BSDF (Sadeghi et al. 2013 eq. 2-4) to a thread table
-// (thread frame: tangent +x, normal +z; SPEC §2): eta, kd, gamma_s_deg,
+// (thread frame: tangent +x, normal +z; docs/formats.md): eta, kd, gamma_s_deg,
 // gamma_v_deg and albedo (rgb; one value for one-channel tables).
 #pragma once
 

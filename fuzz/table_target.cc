@@ -22,7 +22,7 @@ bool Unit(const glm::dvec3& v) {
 
 }  // namespace
 
-// What ReadTable promises of a table it returns (io/table.h, SPEC §2).
+// What ReadTable promises of a table it returns (io/table.h, docs/formats.md).
 void fuzz::CheckTable(const MeasurementTable& table) {
   Require(!table.rows.empty(), "a table read without error has rows");
   Require(table.channels == 1 || table.channels == 3, "channels 1 or 3");

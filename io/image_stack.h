@@ -4,7 +4,7 @@
 // r,g,b, or its single channel), so a stack becomes a spatially varying
 // measurement table (s = column, t = row of the pixel).
 //
-// Manifest (SPEC §2 conventions: '#' metadata lines, then a header; any
+// Manifest (docs/formats.md conventions: '#' metadata lines, then a header; any
 // column order, case-insensitive names; angles in degrees unless
 // "# units: radians"; image paths relative to the manifest's folder):
 //   # clothfit-stack 1

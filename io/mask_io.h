@@ -1,4 +1,4 @@
-// Binary masks of opaque and transparent texels (SPEC §3.5), read from any
+// Binary masks of opaque and transparent texels (docs/models.md), read from any
 // image OpenImageIO reads (PNG, TIFF, EXR, JPEG, ...).
 //
 // Which channel: the alpha channel when the image has one (opaque where

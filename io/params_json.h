@@ -1,4 +1,4 @@
-// Parameter files (SPEC §4): one JSON object with a "model" key.
+// Parameter files (docs/formats.md): one JSON object with a "model" key.
 //
 //   {"model": "thread", "eta": 1.539, "kd": 0.1, "gamma_s_deg": 2.5,
 //    "gamma_v_deg": 5.0, "albedo": [0.035, 0.01295, 0.0105]}

@@ -1,4 +1,5 @@
-// Measurement tables (SPEC §2): CSV with '#' metadata lines and a header row.
+// Measurement tables (docs/formats.md): CSV with '#' metadata lines and a
+// header row.
 //
 //   # clothfit-table 1
 //   # quantity: brdf            brdf | cosine_weighted | transmittance
@@ -123,7 +124,7 @@ void WriteTable(const MeasurementTable& table, const std::string& path,
                 const TableProgress& progress = {});
 std::string FormatTable(const MeasurementTable& table);
 
-// Spherical angles (radians) <-> unit vectors, SPEC §1.
+// Spherical angles (radians) <-> unit vectors, docs/formats.md
 glm::dvec3 DirectionFromAngles(double theta, double phi);
 void AnglesFromDirection(const glm::dvec3& w, double* theta, double* phi);
 

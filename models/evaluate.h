@@ -1,6 +1,6 @@
 // Every model behind one interface: the variant ModelParams of their
 // parameter sets, and their values as the quantities tables hold. The one
-// place that converts between the BSDF f and rho = f |wi.z| (SPEC §1):
+// place that converts between the BSDF f and rho = f |wi.z| (docs/formats.md):
 // each model evaluates the quantity its paper defines (NativeValue and
 // kModelInfo in its header), and Value converts. Templated on the scalar
 // type, so that a fit evaluates Jets through the same code.

@@ -1,5 +1,5 @@
 // Semi-transparent texture with thickness (David-Babin 2022, §3.2-3.4 and
-// Algorithm 3.1; SPEC §3.5), templated on the scalar type so that the same
+// Algorithm 3.1; docs/models.md), templated on the scalar type so that the same
 // code evaluates double and Ceres Jets.
 //
 // A binary mask of opaque and transparent texels tiles the plane; opaque
@@ -96,7 +96,7 @@ using HoleRatios = HoleRatiosT<double>;
 inline constexpr double kMinCosView = 1e-9;
 
 // r = -h wo.xy / |wo.z|: how far (in texels) the view ray travels sideways
-// while it crosses the thickness h (SPEC §3.5). The same for a viewer on
+// while it crosses the thickness h (docs/models.md). The same for a viewer on
 // either side (wo.z < 0: the ray crosses the layer upwards).
 template <typename T>
 Vec2<T> ViewOffset(const T& h, const glm::dvec3& wo) {

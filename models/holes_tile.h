@@ -1,5 +1,5 @@
 // The transmittance of a whole tile of a holed layer (David-Babin 2022;
-// SPEC §3.5): the texels of one mip level of a mask's count pyramid
+// docs/models.md): the texels of one mip level of a mask's count pyramid
 // (models/holes.h, models/holes_distance.h), the method that turns their
 // counts into ratios, and the one function that evaluates the model,
 // HolesTransmittance. The counts come from a mask (holes/hole_texture.h);

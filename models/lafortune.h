@@ -1,5 +1,5 @@
 // Lafortune lobes with a per-view lookup table (Daubert et al. 2001, eq. 1-2;
-// SPEC §3.3), templated on the scalar type.
+// docs/models.md), templated on the scalar type.
 //
 //   f1(l, v)    = l.z (rho_d + sum_k [Cx lx vx + Cy ly vy + Cz lz vz]^N)
 //   model(l, v) = T(v) f1(l, v)                           (channel-wise)

@@ -1,5 +1,5 @@
 // Cloth patch of the microcylinder model (Sadeghi et al. 2013, eq. 5-13;
-// SPEC §3.2): threads of a weave with coverages and tangent samples,
+// docs/models.md): threads of a weave with coverages and tangent samples,
 // shadowing/masking M and reweighting P. Templated on the scalar type.
 //
 // For thread j (direction d = +x for "u", +y for "v") with tangent samples at
@@ -94,7 +94,7 @@ inline constexpr ParamInfo kClothOffsets = {
 // One thread type of a weave.
 template <typename T>
 struct ClothThreadT {
-  // Direction of the thread in the surface frame (SPEC §1).
+  // Direction of the thread in the surface frame (docs/formats.md).
   ThreadDirection direction = ThreadDirection::kU;
   T coverage = kClothCoverage.Default<T>();  // a_j
   // The tangent offsets of the samples C_j. No default: a weave's samples

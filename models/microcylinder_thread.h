@@ -1,5 +1,5 @@
 // Thread BSDF of the microcylinder cloth model (Sadeghi et al. 2013, eq. 2-4;
-// SPEC §3.1), templated on the scalar type so that the same code evaluates
+// docs/models.md), templated on the scalar type so that the same code evaluates
 // double and Ceres Jets.
 //
 // A thread is a locally straight cylinder with tangent t. For a direction w,
@@ -20,7 +20,7 @@
 // ComputeThreadGeometry and AngleBetween); these stay accurate and
 // differentiable up to the poles, where asin/acos of a dot product lose both. A
 // direction along t has no azimuth: ThreadGeometry::valid is false and the
-// sample contributes nothing (SPEC §3.1).
+// sample contributes nothing (docs/models.md).
 #pragma once
 
 #include <cmath>
@@ -117,7 +117,7 @@ void VisitParams(ThreadParamsT<T>& p, F&& f) {
 // Entries of the flat layout (models/params.h ToArray).
 inline constexpr int kThreadFlatSize = 7;
 
-// Unit-area Gaussian of width s (radians), SPEC §3.1 g(s, x).
+// Unit-area Gaussian of width s (radians), docs/models.md g(s, x).
 template <typename T>
 T NormalizedGaussian(const T& s, const T& x) {
   return ExpNeg(x * x / (T(2.0) * s * s)) / (s * T(std::sqrt(2.0 * kPi)));
@@ -281,8 +281,8 @@ Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
   return Vec3<T>(lobes.surface) + p.albedo * lobes.volume;
 }
 
-// The thread BSDF in the thread frame of SPEC §2 (tangent +x, normal +z):
-// what a thread table measures. Zero where the geometry is undefined.
+// The thread BSDF in the thread frame of docs/formats.md (tangent +x, normal
+// +z): what a thread table measures. Zero where the geometry is undefined.
 template <typename T>
 Vec3<T> ThreadBsdfLocal(const ThreadParamsT<T>& p, const Vec3<T>& wi,
                         const Vec3<T>& wo) {

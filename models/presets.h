@@ -1,6 +1,6 @@
 // The fabrics of Sadeghi et al. 2013: scattering parameters from Table 2,
 // coverages and tangent offsets from Table 3 (Appendix A). The explicit
-// tangent samples are the table's offsets (SPEC §3.2); the tables' tangent
+// tangent samples are the table's offsets (docs/models.md); the tables' tangent
 // curves are kept alongside (ClothThread::curve with samples = 0) so that a
 // caller can resample them. Albedo = the table's colour times its factor.
 // The first thread listed in the table runs along u (+x), the second along v.

@@ -1,4 +1,4 @@
-// What a table value or a model output measures (SPEC §1-2).
+// What a table value or a model output measures (docs/formats.md-2).
 #pragma once
 
 namespace clothfit {

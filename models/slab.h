@@ -1,6 +1,7 @@
 // Optically thin semi-transparent slab (Frisvad et al., "Rendering thin
-// semi-transparent objects", after Chandrasekhar 1960; SPEC §3.4), templated
-// on the scalar type so that the same code evaluates double and Ceres Jets.
+// semi-transparent objects", after Chandrasekhar 1960; docs/models.md),
+// templated on the scalar type so that the same code evaluates double and Ceres
+// Jets.
 //
 // A plane-parallel layer of optical thickness tau with isotropic scattering
 // (phase function A / (4 pi), single-scattering albedo A), lit by a
@@ -77,7 +78,8 @@ inline constexpr double kSlabSeries[kSlabSeriesTerms] = {1.0,
                                                          1.0 / 6227020800.0,
                                                          1.0 / 87178291200.0};
 // f_r diverges when both directions are grazing; mu_i + mu_o is floored
-// here (the cloth model's kMinCosIncidence, SPEC-silent; docs/decisions.md).
+// here (the cloth model's kMinCosIncidence, a choice of ours;
+// docs/decisions.md).
 inline constexpr double kSlabMinMuSum = 1e-7;
 // Documented range of tau (the model is meant for tau well below 1; the
 // upper limit only keeps numbers finite).
@@ -106,7 +108,7 @@ inline constexpr ParamInfo kSlabTau = {
     100.0,
     false,
     {0.1, 0.1, 0.1},
-    "Frisvad et al., Sec. 3 (tau_1); SPEC §3.4",
+    "Frisvad et al., Sec. 3 (tau_1); docs/models.md",
     3};
 inline constexpr ParamInfo kSlabAlbedo = {
     "albedo",
@@ -326,7 +328,8 @@ inline double SlabSingleScatterError(double tau, double albedo) {
 // The estimated relative error of the single-scattering f_r, f_t for a
 // parameter set: the largest SlabSingleScatterError over the channels.
 // Above kSlabRegimeTolerance the parameters lie outside the model's regime
-// (SPEC §3.4: "where it is not [accurate], the tool says so"; docs/slab.md).
+// (docs/models.md: "where it is not [accurate], the tool says so";
+// docs/slab.md).
 inline double SlabParamsSingleScatterError(const SlabParams& p) {
   double error = 0.0;
   for (int c = 0; c < 3; ++c) {

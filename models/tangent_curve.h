@@ -1,5 +1,5 @@
 // The tangent curve of a thread in a weave (Sadeghi et al. 2013, Appendix
-// A, Table 3; SPEC §3.2): control-point offsets and segment lengths,
+// A, Table 3; docs/models.md): control-point offsets and segment lengths,
 // sampled at equidistant points along the curve.
 #pragma once
 
@@ -21,7 +21,7 @@ struct TangentCurve {
   int samples = 0;                  // T >= 1
 };
 
-// Samples a curve (SPEC §3.2). Requires ValidateTangentCurve(c).empty().
+// Samples a curve (docs/models.md). Requires ValidateTangentCurve(c).empty().
 inline std::vector<double> SampleTangentCurve(const TangentCurve& c) {
   double total = 0.0;
   for (double l : c.lengths) total += l;

@@ -1,4 +1,4 @@
-// Runs the clothfit executable (SPEC §5) and checks its files, output and
+// Runs the clothfit executable (docs/cli.md) and checks its files, output and
 // exit status against the library.
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -1061,7 +1061,7 @@ TEST(CliTest, LafortuneSingleTableFitThenEval) {
                   "5", "--out", out},
                  {"--lobes"});
 
-  // The "fit" object (SPEC §4): cost, termination, convergence.
+  // The "fit" object (docs/formats.md): cost, termination, convergence.
   for (const char* key :
        {"\"final_cost\"", "\"termination\"", "\"converged\":true"}) {
     EXPECT_NE(p.fit_json.find(key), std::string::npos) << key;
@@ -1161,7 +1161,7 @@ void WriteTestMip(const std::string& path) {
   WriteParamMipmap(ToParamMipmap(r), path);
 }
 
-// SPEC §3.3 for texel (x, y) of level l, in the surface frame (normal +z,
+// docs/models.md for texel (x, y) of level l, in the surface frame (normal +z,
 // no lookup table): rho = l.z (rho_d + [Cx lx vx + Cy ly vy + Cz lz vz]^N),
 // [a]^N = 0 for a <= 0; the BRDF f = rho / l.z.
 glm::dvec3 MipExpected(int l, int x, int y, const glm::dvec3& wi,

@@ -1,4 +1,4 @@
-// Helpers for the tests that run the clothfit executable (SPEC §5):
+// Helpers for the tests that run the clothfit executable (docs/cli.md):
 // running it with captured output, and the checks every bad input must
 // pass.
 #pragma once

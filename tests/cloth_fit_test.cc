@@ -1,4 +1,4 @@
-// Cloth fit (fitting/cloth_fit.h, SPEC §3.2): the scattering parameters of
+// Cloth fit (fitting/cloth_fit.h, docs/models.md): the scattering parameters of
 // every preset are recovered from synthetic cloth tables built in memory
 // (data_synthetic), with and without noise and outliers, from a generic
 // start; far starts never end as a converged success with wrong values;
@@ -317,7 +317,7 @@ TEST(ClothFitOutliers, CauchyLossRecoversWithinFivePercent) {
 // ---------------------------------------------------------------------------
 // 4. Identifiability.
 
-// A cloth reflects only (wi.z > 0 and wo.z > 0, SPEC §3.2): rows with the
+// A cloth reflects only (wi.z > 0 and wo.z > 0, docs/models.md): rows with the
 // viewer below the surface hold zeros whatever the parameters. They are
 // left out and counted, so the fit and its errors are those of the
 // reflection rows; a table of nothing else is an input error.

@@ -1,4 +1,4 @@
-// The independent implementation's reference values (SPEC §3.2):
+// The independent implementation's reference values (docs/models.md):
 // ../shared/data/conformance/microcylinder_rho.csv, one row per (preset,
 // wi, wo) with the cloth model's rho.
 #pragma once

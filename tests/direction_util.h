@@ -15,7 +15,7 @@ namespace clothfit {
 namespace testing_util {
 
 // The unit vector at polar angle theta and azimuth phi (degrees) in the
-// surface frame (SPEC §1).
+// surface frame (docs/formats.md).
 inline glm::dvec3 Dir(double theta_deg, double phi_deg) {
   const double t = Radians(theta_deg), p = Radians(phi_deg);
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};

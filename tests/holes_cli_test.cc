@@ -191,10 +191,7 @@ TEST(HolesCliTest, TileCommandStoresTheMasksTile) {
   auto eval = [&](const std::vector<std::string>& args) {
     const std::string out = (dir / "o.csv").string();
     std::vector<std::string> all = args;
-    for (const std::string& a :
-         {"--dirs", dirs.c_str(), "--out", out.c_str()}) {
-      all.push_back(a);
-    }
+    all.insert(all.end(), {"--dirs", dirs, "--out", out});
     const RunResult r = RunClothfit(dir, all);
     EXPECT_EQ(r.status, 0) << Describe(r);
     return ReadTable(out).table;

@@ -21,7 +21,7 @@ namespace {
 constexpr int kSamples = 128;
 constexpr double kTruthError = 2.0 / kSamples;
 
-// The nine counts of texel (x, y) straight from SPEC §3.5's definitions.
+// The nine counts of texel (x, y) straight from docs/models.md's definitions.
 std::array<int, kHoleCountChannels> CountsByDefinition(const Mask& m, int x,
                                                        int y) {
   std::array<int, kHoleCountChannels> c{};

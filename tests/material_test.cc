@@ -86,7 +86,7 @@ TEST(Material, EveryParameterFileEvaluatesAsTheModel) {
       for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(m.Rho(wi, wo)[c], rho[c], 1e-12 * std::abs(rho[c]));
         EXPECT_NEAR(m.F(wi, wo)[c], f[c], 1e-12 * std::abs(f[c]));
-        // f = rho / cos(theta_i) (SPEC §1).
+        // f = rho / cos(theta_i) (docs/formats.md).
         EXPECT_NEAR(m.F(wi, wo)[c] * wi.z, m.Rho(wi, wo)[c],
                     1e-12 * std::abs(rho[c]));
       }

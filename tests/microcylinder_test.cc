@@ -1,4 +1,4 @@
-// Thread BSDF and cloth patch (models/microcylinder_*.h, SPEC §3.1-3.2).
+// Thread BSDF and cloth patch (models/microcylinder_*.h, docs/models.md-3.2).
 #include <ceres/jet.h>
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ namespace {
 using testing_util::Dir;
 using testing_util::Preset;
 
-// Every row of the independent implementation's output (SPEC §3.2).
+// Every row of the independent implementation's output (docs/models.md).
 TEST(MicrocylinderConformance, MatchesIndependentImplementation) {
   int rows = 0;
   for (const testing_util::ConformanceRow& row :
@@ -238,7 +238,7 @@ TEST(ThreadBsdf, FiniteAndNonNegativeOverTheWholeSphere) {
       }
     }
   }
-  // A direction along the tangent contributes nothing (SPEC §3.1).
+  // A direction along the tangent contributes nothing (docs/models.md).
   EXPECT_EQ(ThreadBsdfLocal(p, glm::dvec3(1, 0, 0), Dir(30, 0)).x, 0.0);
 }
 

@@ -2,7 +2,7 @@
 // the same models as clothfit: its NumPy thread, cloth and slab formulas
 // match clothfit's values on noise-free tables written here, and its cloth
 // matches the independent implementation of the conformance data
-// (SPEC §3.2). Skipped where /usr/bin/python3 has no SciPy (the bench then
+// (docs/models.md). Skipped where /usr/bin/python3 has no SciPy (the bench then
 // skips the peer).
 #include <gtest/gtest.h>
 
@@ -108,7 +108,7 @@ TEST(PeerModels, ClothMatchesClothfitAndTheConformanceData) {
   for (const auto& [preset, table] : tables) {
     ClothParams cloth;
     ASSERT_TRUE(GetPreset(preset, &cloth)) << preset;
-    // SPEC §3.2: the independent implementation, to 1e-6 relative.
+    // docs/models.md: the independent implementation, to 1e-6 relative.
     EXPECT_LT(PeerDifference(dir, "cloth", cloth, table), 1e-6) << preset;
     EXPECT_LT(PeerDifference(dir, "cloth", cloth, CleanTable(cloth, false)),
               kAgreement)

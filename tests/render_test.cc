@@ -390,7 +390,7 @@ TEST(RenderCli, MipmapFileRendersTiledCylindersAndComparesWithAPreset) {
                  {"broken.exr"});
 }
 
-// SPEC §3.4: a slab outside the single-scattering regime is rendered, with
+// docs/models.md: a slab outside the single-scattering regime is rendered, with
 // one note saying so; one within it gets none.
 TEST(RenderCli, SlabOutsideTheRegimeIsRenderedWithANote) {
   const fs::path dir = TestDir();

@@ -1,5 +1,5 @@
-// Slab parameter files (io/params_json, SPEC §4) and the slab commands of
-// the clothfit executable: synth --model slab (formulas, Monte Carlo, the
+// Slab parameter files (io/params_json, docs/formats.md) and the slab commands
+// of the clothfit executable: synth --model slab (formulas, Monte Carlo, the
 // error chart), fit --model slab, eval on slab files.
 #include <gtest/gtest.h>
 
@@ -215,7 +215,7 @@ TEST(SlabCli, FitReportsDataOutsideTheRegime) {
       << r.err;
 }
 
-// SPEC §3.4: where single scattering is not accurate, the tool says so.
+// docs/models.md: where single scattering is not accurate, the tool says so.
 // The regimes come from the Monte Carlo chart of docs/slab.md: tau = 0.001,
 // A = 1 is within 0.4 %; tau = 0.01, A = 0.8 is 2.2 % off (both below the
 // paper's bound tau < 0.2). The note goes with the formulas' BSDF values

@@ -1,4 +1,4 @@
-// The optically thin slab (models/slab.h, SPEC §3.4): closed-form limits,
+// The optically thin slab (models/slab.h, docs/models.md): closed-form limits,
 // reciprocity, the series around mu_o = mu_i, grazing directions,
 // derivatives, parameter checks and the multiple-scattering estimate.
 #include <ceres/jet.h>
@@ -105,7 +105,7 @@ TEST(SlabModel, ThickLimitIsLommelSeeliger) {
   }
 }
 
-// SPEC §3.4's forms, written out here in long double (the reference).
+// docs/models.md's forms, written out here in long double (the reference).
 long double RefReflection(long double tau, long double mi, long double mo) {
   return (1.0L - std::exp(-tau * (1.0L / mi + 1.0L / mo))) / (mi + mo);
 }
@@ -126,7 +126,7 @@ TEST(SlabModel, MatchesSpecFormulasAwayFromTheSingularity) {
       }
     }
   }
-  // mu_o = mu_i: SPEC's limit tau / mu^2 exp(-tau / mu).
+  // mu_o = mu_i: the model's limit tau / mu^2 exp(-tau / mu).
   for (double mu : {1.0, 0.3, 0.02}) {
     ExpectRel(SlabTransmissionFactor(0.4, mu, mu), RefTransmission(0.4, mu, mu),
               1e-14, "f_t diagonal");
@@ -196,7 +196,7 @@ TEST(SlabModel, SeriesSwitchIsAccurateInValueAndDerivatives) {
   }
 }
 
-// At mu_o = mu_i exactly and around it: smooth, finite, the SPEC limit.
+// At mu_o = mu_i exactly and around it: smooth, finite, the model's limit.
 TEST(SlabModel, SmoothThroughEqualCosines) {
   const double tau = 0.3, mu = 0.5;
   const Jet3 at =

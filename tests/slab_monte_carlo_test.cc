@@ -1,5 +1,5 @@
 // Monte Carlo ground truth for the slab (data_synthetic/slab_monte_carlo.h):
-// its single-scattering mode against SPEC §3.4's formulas, energy
+// its single-scattering mode against docs/models.md's formulas, energy
 // conservation, its two estimators against each other, determinism, and
 // the tables it writes.
 #include "data_synthetic/slab_monte_carlo.h"

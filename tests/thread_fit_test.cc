@@ -1,4 +1,4 @@
-// Thread fit (fitting/thread_fit.h, SPEC §3.1): known parameters are
+// Thread fit (fitting/thread_fit.h, docs/models.md): known parameters are
 // recovered from synthetic thread tables built in memory (data_synthetic),
 // with and without noise and outliers; far starts never end as a converged
 // success with wrong values; undeterminable parameters are named; --fix and

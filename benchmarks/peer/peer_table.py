@@ -1,4 +1,4 @@
-"""Reading a clothfit measurement table (SPEC §2) for the SciPy peers."""
+"""Reading a clothfit measurement table (docs/formats.md) for the SciPy peers."""
 import csv
 
 import numpy as np

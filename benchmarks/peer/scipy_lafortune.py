@@ -6,7 +6,7 @@ channel, no lookup table.
 
     scipy_lafortune.py TRAIN.csv TEST.csv LOBES
 
-TRAIN/TEST are clothfit measurement tables (SPEC section 2) with s,t texel
+TRAIN/TEST are clothfit measurement tables (docs/formats.md) with s,t texel
 columns and wi_x..wo_z direction columns, cosine-weighted values r,g,b.
 Model (Daubert et al. 2001, eq. 2; models/lafortune.h):
     f1(l, v) = l.z (rho_d + sum_k [Cx lx vx + Cy ly vy + Cz lz vz]^N)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The peer of `clothfit bench` for the thread, cloth, slab and
 holes fits: the same synthetic problems fitted the way a user would without
-clothfit - the model formulas of SPEC section 3 in NumPy and SciPy's
+clothfit - the model formulas of docs/models.md in NumPy and SciPy's
 least_squares (trust-region reflective, bounds, finite-difference
 Jacobian), from the same start, with the same bounds, free parameters and
 sigma-normalised residuals.
@@ -11,7 +11,7 @@ sigma-normalised residuals.
 
 MODEL: thread, cloth, slab or holes (Algorithm 3.1 on the whole tile: the
 parameter file also holds the tile's nine "counts" and "texels"). SPEC.json (written by the bench): "params"
-(a parameter file, SPEC section 4: the start, with the cloth's weave),
+(a parameter file, docs/formats.md: the start, with the cloth's weave),
 "truth" (a parameter file of the true values), "names", "lower", "upper",
 "free" (the parameter vector as clothfit's fit report lists it; the start
 and true values are read from the files by these names). TRAIN.csv: the table to
@@ -47,7 +47,7 @@ def read_table(path):
 
     def direction(prefix, theta, phi):
         if prefix + "_x" not in col and theta not in col:
-            # A transmittance table may leave out the light: +z (SPEC 2).
+            # A transmittance table may leave out the light: +z (docs/formats.md).
             return np.tile([0.0, 0.0, 1.0], (rows, 1))
         if prefix + "_x" in col:
             v = np.stack([col[prefix + "_" + a] for a in "xyz"], axis=1)
@@ -71,7 +71,7 @@ def read_table(path):
     return wi, wo, values, sigma
 
 
-# --- Thread (SPEC 3.1; Sadeghi et al. 2013, eq. 2-4) -----------------------
+# --- Thread (docs/models.md; Sadeghi et al. 2013, eq. 2-4) -----------------------
 
 def gaussian(s, x):
     return np.exp(-x * x / (2.0 * s * s)) / (s * math.sqrt(2.0 * math.pi))
@@ -93,7 +93,7 @@ def angle_between(a, b):
 
 
 def masking(cos_i, cos_o, angle_d):
-    """M or P of SPEC 3.2 (0 unless both cosines are positive)."""
+    """M or P of docs/models.md (0 unless both cosines are positive)."""
     u = np.exp(-angle_d ** 2 / (2.0 * math.radians(20.0) ** 2))
     both = (cos_i > 0.0) & (cos_o > 0.0)
     m = (1.0 - u) * cos_i * cos_o + u * np.minimum(cos_i, cos_o)
@@ -101,7 +101,7 @@ def masking(cos_i, cos_o, angle_d):
 
 
 def geometry(t, n, wi, wo):
-    """The angles of SPEC 3.1 for tangent t and normal n (arrays n x 3)."""
+    """The angles of docs/models.md for tangent t and normal n (arrays n x 3)."""
     g = {}
     sin_i, sin_o = wi @ t, wo @ t
     pi, po = wi - np.outer(sin_i, t), wo - np.outer(sin_o, t)
@@ -130,7 +130,7 @@ def geometry(t, n, wi, wo):
 
 
 def thread_bsdf(p, g):
-    """f_s (n x 3) of SPEC 3.1; 0 where the geometry is undefined."""
+    """f_s (n x 3) of docs/models.md; 0 where the geometry is undefined."""
     fr = fresnel(np.sqrt(g["cos2_theta_d"]) * g["cos_half_phi_d"], p["eta"])
     inv_cos2 = 1.0 / g["cos2_theta_d"]
     th = g["theta_h"]
@@ -150,7 +150,7 @@ def thread_model(p, wi, wo):
     return p.get("scale", 1.0) * thread_bsdf(p, g)
 
 
-# --- Cloth (SPEC 3.2; eq. 5-13) --------------------------------------------
+# --- Cloth (docs/models.md; eq. 5-13) --------------------------------------------
 
 def cloth_model(p, wi, wo):
     """f = rho / wi.z of a cloth patch (reflection rows)."""
@@ -187,7 +187,7 @@ def cloth_model(p, wi, wo):
     return p.get("scale", 1.0) * rho / wi[:, 2:3]
 
 
-# --- Slab (SPEC 3.4; single scattering) ------------------------------------
+# --- Slab (docs/models.md; single scattering) ------------------------------------
 
 def slab_model(p, wi, wo):
     tau = np.broadcast_to(np.asarray(p["tau"], dtype=float), (3,))
@@ -205,7 +205,7 @@ def slab_model(p, wi, wo):
     return p.get("scale", 1.0) * np.where(same_side, reflect, transmit)
 
 
-# --- Holes (SPEC 3.5, Algorithm 3.1 on the whole tile) -----------------------
+# --- Holes (docs/models.md, Algorithm 3.1 on the whole tile) -----------------------
 
 def holes_model(p, wi, wo):
     """Transmittance of a holed layer: Algorithm 3.1 on the tile's nine

@@ -1,7 +1,7 @@
 // Built against an installed clothfit (find_package(clothfit)); checks the
 // installed headers and libraries against values computed independently:
 //  1. a preset's rho against the conformance table of an independent
-//     implementation of the microcylinder model (SPEC §3.2);
+//     implementation of the microcylinder model (docs/models.md);
 //  2. a fitted Lafortune file (a fit of a synthetic table of known lobes,
 //     fitted_lafortune.json) through clothfit::Material against the
 //     Lafortune formula written out here, with the file's numbers and with

@@ -15,6 +15,14 @@ include(${CMAKE_CURRENT_LIST_DIR}/../consumer/consumer_steps.cmake)
 install_and_build_consumer(${BUILD_DIR} ${WORK_DIR} ${SOURCE_DIR} ${GENERATOR})
 run(${WORK_DIR}/build/renderer ${FITTED} ${WORK_DIR})
 
+# The documents the README and the help cite are installed beside them.
+foreach(doc README.md docs/formats.md docs/models.md docs/cli.md
+            docs/renderer.md)
+  if(NOT EXISTS ${WORK_DIR}/prefix/share/doc/clothfit/${doc})
+    message(FATAL_ERROR "not installed: share/doc/clothfit/${doc}")
+  endif()
+endforeach()
+
 execute_process(COMMAND ldd ${WORK_DIR}/build/renderer
   OUTPUT_VARIABLE libraries RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
