@@ -80,8 +80,8 @@ void ColourRange(const HeatMap& map, double* lo, double* hi) {
   }
 }
 
-std::string Format(double value) {
-  return std::isfinite(value) ? text_util::FormatNumber(value, 3) : "-";
+std::string Format(double value, const std::string& unit) {
+  return std::isfinite(value) ? text_util::FormatNumber(value, 3) + unit : "-";
 }
 
 }  // namespace
@@ -143,8 +143,10 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
               cv::Rect(cell.x + 2, cell.y + 2, cell.width - 4, cell.height - 4),
               kAlarm, 2);
         }
-        Centred(&img, panel.cell_text.empty() ? Format(v) : panel.cell_text[i],
-                cell.x + kCellWidth / 2, cell.y + kCellHeight / 2, 0.42, fill);
+        Centred(
+            &img,
+            panel.cell_text.empty() ? Format(v, map.unit) : panel.cell_text[i],
+            cell.x + kCellWidth / 2, cell.y + kCellHeight / 2, 0.42, fill);
       }
     }
     for (int c = 0; c < cols; ++c) {
@@ -181,8 +183,8 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
             : lo + t * (hi - lo);
     const int y = kTop + static_cast<int>((1.0 - t) * (bar_h - 1));
     cv::line(img, cv::Point(bar_x + 20, y), cv::Point(bar_x + 25, y), kInk);
-    cv::putText(img, Format(value), cv::Point(bar_x + 28, y + 5), kFont, 0.4,
-                kInk, 1, cv::LINE_AA);
+    cv::putText(img, Format(value, map.unit), cv::Point(bar_x + 28, y + 5),
+                kFont, 0.4, kInk, 1, cv::LINE_AA);
   }
   cv::putText(img, map.legend, cv::Point(bar_x - 10, kTop - 10), kFont, 0.4,
               kInk, 1, cv::LINE_AA);

@@ -1,0 +1,34 @@
+// The charts of `clothfit bench` (bench/bench.h) as chart specs
+// (charts/chart.h), built from its rows: what WriteBenchReport draws, so
+// that the choices (which point is ringed, the y range) can be checked
+// without decoding a PNG.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bench/bench.h"
+#include "charts/chart.h"
+
+namespace clothfit {
+
+// Wall time (log) against the held-out error of one model's rows, a
+// series per group, the Pareto front; the default configuration
+// (BenchRow::is_default) ringed.
+ScatterChart SpeedAccuracyChart(const std::string& model,
+                                const std::vector<BenchRow>& rows);
+
+// The held-out error against the model size of the rows with a size, a
+// line per group sorted by size; ringed: the default configuration's point
+// (is_default or default_size), nothing else (the size `--tolerance` picks
+// is in the summary's text).
+ScatterChart ErrorSizeChart(const std::string& model,
+                            const std::vector<BenchRow>& rows);
+
+// Sets the chart's fixed y range to that of its drawable points, padded
+// by 8 % of the spread (10 % of the value where all are equal, so errors
+// of 3e-4 are not drawn on a unit range) and kept >= 0 where all values
+// are. A log y axis and a chart without finite points are left alone.
+void FitYRangeToData(ScatterChart* chart);
+
+}  // namespace clothfit
