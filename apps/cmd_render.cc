@@ -29,8 +29,9 @@ struct RenderedRow {
 };
 
 // The render of --FILE_OPTION P.json or --PRESET_OPTION NAME, its row
-// titled "ROLE: P.json" or "ROLE: preset NAME" (the top row's role: "fit"
-// for a file with a "fit" object or a mip map, else "params"); a slab's
+// titled "ROLE: P.json (MODEL)" or "ROLE: preset NAME (MODEL)" (the top
+// row's role: "fit" for a file with a "fit" object or a mip map, else
+// "params"; a compare row that is a fit adds ", fitted"); a slab's
 // parameters are added to *slabs (for the regime note, once written).
 RenderedRow RenderOption(const CommandArgs& args,
                          const std::string& file_option,
@@ -39,6 +40,7 @@ RenderedRow RenderOption(const CommandArgs& args,
                          std::vector<SlabParams>* slabs) {
   RenderedRow row;
   std::string title;
+  bool fitted = false;  // a file with a "fit" object, or a mip map
   if (args.Has(preset_option)) {
     const ClothParams preset = RequirePreset(args, args.Get(preset_option));
     row.image = RenderCylinders(preset, options);
@@ -54,6 +56,7 @@ RenderedRow RenderOption(const CommandArgs& args,
                                   options);
       row.model = "lafortune mip map";
       row.params = "";  // the parameters are the texels of the file
+      fitted = true;
       title = std::string(role ? role : "fit") + ": " + name;
     } else {
       const ParamFile file = ReadParamFile(path);
@@ -70,13 +73,16 @@ RenderedRow RenderOption(const CommandArgs& args,
       }
       row.model = ModelName(file.params);
       row.params = FormatParamFile(file);
-      title = std::string(role                    ? role
-                          : file.fit_json.empty() ? "params"
-                                                  : "fit") +
+      fitted = !file.fit_json.empty();
+      title = std::string(role     ? role
+                          : fitted ? "fit"
+                                   : "params") +
               ": " + name;
     }
   }
-  row.image.row_titles = {title + " (" + row.model + ")"};
+  // The compare row says whether it is a fit (the top row's role does).
+  row.image.row_titles = {title + " (" + row.model +
+                          (role && fitted ? ", fitted" : "") + ")"};
   return row;
 }
 
