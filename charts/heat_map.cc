@@ -113,9 +113,13 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
   const int panel_w = cols * kCellWidth;
   const int grid_w = n * panel_w + (n - 1) * kGap;
   int baseline = 0;
-  const int width =
-      std::max(kLeft + grid_w + kBarWidth,
-               cv::getTextSize(map.title, kFont, 0.6, 1, &baseline).width + 24);
+  // Wide enough for the title and for the colour bar's caption, which
+  // starts 10 pixels left of the bar (20 right of the grid).
+  const int width = std::max(
+      {kLeft + grid_w + kBarWidth,
+       cv::getTextSize(map.title, kFont, 0.6, 1, &baseline).width + 24,
+       kLeft + grid_w + 10 +
+           cv::getTextSize(map.legend, kFont, 0.4, 1, &baseline).width + 12});
   const int height = kTop + rows * kCellHeight + kBottom;
   cv::Mat img(height, width, CV_8UC3, kPaper);
   cv::putText(img, map.title, cv::Point(12, 30), kFont, 0.6, kInk, 1,
