@@ -86,10 +86,16 @@ void FitYRangeToData(ScatterChart* chart) {
     }
   }
   if (!(lo <= hi)) return;
+  const bool all_positive = lo >= 0.0;
+  // At least 10 % of the values' magnitude: differences far below it (the
+  // thread's solvers agree to 1e-5) read as equal, not as a gap.
   const double scale = std::max(std::abs(lo), std::abs(hi));
-  double pad = 0.08 * (hi - lo);
-  if (!(hi - lo > 1e-9 * scale)) pad = scale > 0.0 ? 0.1 * scale : 1.0;
-  chart->y_min = lo >= 0.0 ? std::max(0.0, lo - pad) : lo - pad;
+  const double span = std::max(hi - lo, 0.1 * scale);
+  const double mid = 0.5 * (lo + hi);
+  lo = mid - 0.5 * span;
+  hi = mid + 0.5 * span;
+  const double pad = scale > 0.0 ? 0.08 * span : 1.0;
+  chart->y_min = all_positive ? std::max(0.0, lo - pad) : lo - pad;
   chart->y_max = hi + pad;
 }
 

@@ -25,9 +25,10 @@ ScatterChart SpeedAccuracyChart(const std::string& model,
 ScatterChart ErrorSizeChart(const std::string& model,
                             const std::vector<BenchRow>& rows);
 
-// Sets the chart's fixed y range to that of its drawable points, padded
-// by 8 % of the spread (10 % of the value where all are equal, so errors
-// of 3e-4 are not drawn on a unit range) and kept >= 0 where all values
+// Sets the chart's fixed y range to that of its drawable points, widened
+// to at least 10 % of their magnitude about its middle (so errors of
+// 3e-4 that agree to 1e-9 are neither drawn on a unit range nor spread
+// over the whole axis), padded by 8 % and kept >= 0 where all values
 // are. A log y axis and a chart without finite points are left alone.
 void FitYRangeToData(ScatterChart* chart);
 

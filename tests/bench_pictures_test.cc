@@ -60,6 +60,8 @@ TEST(BenchCharts, SpeedChartRingsTheDefaultOnceAndTakesYFromTheErrors) {
   EXPECT_GT(c.y_max, 3e-4);
   EXPECT_GE(c.y_min, 0.0);
   EXPECT_LT(c.y_max, 1e-3);  // not a unit range around 3e-4
+  // ... nor a difference of 1e-13 spread over the axis.
+  EXPECT_GT(c.y_max - c.y_min, 0.1 * 3e-4);
 }
 
 TEST(BenchCharts, SizeChartRingsTheDefaultConfigurationOnly) {
