@@ -4,7 +4,8 @@
 // texture on tilted panels; a Lafortune parameter mip map (.exr) tiled over
 // the cylinders, each pixel reading the level that matches its footprint; with
 // --compare, a second file's render below the first at the same exposure.
-// Linear EXR plus tone-mapped PNG.
+// Linear EXR (with the model, parameters and command line in its header)
+// plus tone-mapped PNG with labels.
 #include <cstdio>
 #include <filesystem>
 #include <vector>
@@ -19,33 +20,83 @@
 namespace clothfit {
 namespace {
 
-// The render of --FILE_OPTION P.json or --PRESET_OPTION NAME; a slab's
+// One row of the render: the image (its row title set) and what the EXR's
+// header says of it.
+struct RenderedRow {
+  PreviewImage image;
+  std::string model;   // ModelName, or "lafortune mip map"
+  std::string params;  // the parameter file as JSON (FormatParamFile)
+};
+
+// The render of --FILE_OPTION P.json or --PRESET_OPTION NAME, its row
+// titled "ROLE: P.json (MODEL)" or "ROLE: preset NAME (MODEL)" (the top
+// row's role: "fit" for a file with a "fit" object or a mip map, else
+// "params"; a compare row that is a fit adds ", fitted"); a slab's
 // parameters are added to *slabs (for the regime note, once written).
-PreviewImage RenderOption(const CommandArgs& args,
-                          const std::string& file_option,
-                          const std::string& preset_option,
-                          const PreviewOptions& options,
-                          std::vector<SlabParams>* slabs) {
+RenderedRow RenderOption(const CommandArgs& args,
+                         const std::string& file_option,
+                         const std::string& preset_option,
+                         const PreviewOptions& options, const char* role,
+                         std::vector<SlabParams>* slabs) {
+  RenderedRow row;
+  std::string title;
+  bool fitted = false;  // a file with a "fit" object, or a mip map
   if (args.Has(preset_option)) {
-    return RenderCylinders(RequirePreset(args, args.Get(preset_option)),
-                           options);
+    const ClothParams preset = RequirePreset(args, args.Get(preset_option));
+    row.image = RenderCylinders(preset, options);
+    row.model = ModelName(ModelParams(preset));
+    row.params = FormatParamFile(ParamFile(preset));
+    title = std::string(role ? role : "params") + ": preset " +
+            args.Get(preset_option);
+  } else {
+    const std::string path = args.Get(file_option);
+    const std::string name = std::filesystem::path(path).filename().string();
+    if (text_util::HasExtension(path, ".exr")) {
+      row.image = RenderCylinders(MipmapRho(Material::Load(path), options.tile),
+                                  options);
+      row.model = "lafortune mip map";
+      row.params = "";  // the parameters are the texels of the file
+      fitted = true;
+      title = std::string(role ? role : "fit") + ": " + name;
+    } else {
+      const ParamFile file = ReadParamFile(path);
+      if (std::holds_alternative<HolesModel>(file.params)) {
+        row.image = RenderHoles(
+            LoadHolesModel(file, path,
+                           args.Has("mask") ? args.Get("mask") : ""),
+            options);
+      } else if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
+        slabs->push_back(*slab);
+        row.image = RenderSlab(*slab, options);
+      } else {
+        row.image = RenderCylinders(file.params, options);
+      }
+      row.model = ModelName(file.params);
+      row.params = FormatParamFile(file);
+      fitted = !file.fit_json.empty();
+      title = std::string(role     ? role
+                          : fitted ? "fit"
+                                   : "params") +
+              ": " + name;
+    }
   }
-  const std::string path = args.Get(file_option);
-  if (text_util::HasExtension(path, ".exr")) {
-    return RenderCylinders(MipmapRho(Material::Load(path), options.tile),
-                           options);
+  // The compare row says whether it is a fit (the top row's role does).
+  row.image.row_titles = {title + " (" + row.model +
+                          (role && fitted ? ", fitted" : "") + ")"};
+  return row;
+}
+
+// The command line as typed ("clothfit render ..."), arguments with
+// blanks or quotes in single quotes.
+std::string CommandLine(int argc, char** argv) {
+  std::string line = "clothfit";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool plain =
+        !arg.empty() && arg.find_first_of(" \t\n'\"\\$") == std::string::npos;
+    line += " " + (plain ? arg : "'" + arg + "'");
   }
-  const ParamFile file = ReadParamFile(path);
-  if (std::holds_alternative<HolesModel>(file.params)) {
-    return RenderHoles(
-        LoadHolesModel(file, path, args.Has("mask") ? args.Get("mask") : ""),
-        options);
-  }
-  if (const auto* slab = std::get_if<SlabParams>(&file.params)) {
-    slabs->push_back(*slab);
-    return RenderSlab(*slab, options);
-  }
-  return RenderCylinders(file.params, options);
+  return line;
 }
 
 }  // namespace
@@ -63,7 +114,10 @@ int RunRender(int argc, char** argv) {
       "slab is a tilted panel over a checker, front-lit and back-lit; a holes "
       "file a panel at three\ntilts over a checker. --compare renders a "
       "second file below the first at the same exposure.\nWrites linear "
-      "OpenEXR and a tone-mapped PNG (render/preview.h describes the scene).");
+      "OpenEXR (its header: model, parameters, command line, version) and a "
+      "tone-mapped PNG\nwith a label above each row (which file) and panel "
+      "(which orientation, an arrow along the\nwarp); render/preview.h "
+      "describes the scene.");
   args.Option("params", "P.json",
               "parameter file (SPEC §4, or holes), or a Lafortune parameter "
               "mip map P.exr");
@@ -78,7 +132,7 @@ int RunRender(int argc, char** argv) {
               "0.8");
   args.Option("out", "R.exr", "linear render (OpenEXR)");
   args.Option("png", "R.png", "tone-mapped render (default: --out as .png)");
-  args.Option("size", "N", "pixels per panel side, 8..1024", "96");
+  args.Option("size", "N", "pixels per panel side, 8..1024", "192");
   args.Option("light-deg", "THETA,PHI",
               "direction of the light from the camera axis", "45,45");
   args.Option("light-distance", "D", "distance of the light (radius 1)", "6");
@@ -132,10 +186,23 @@ int RunRender(int argc, char** argv) {
   CheckWritable(out);
   CheckWritable(png);
   std::vector<SlabParams> slabs;
-  PreviewImage image = RenderOption(args, "params", "preset", options, &slabs);
+  const RenderedRow top =
+      RenderOption(args, "params", "preset", options, nullptr, &slabs);
+  PreviewImage image = top.image;
+  // The EXR's header: what was rendered and how (docs/renderer.md).
+  std::vector<ExrAttribute> header = {
+      {"clothfit:version", CLOTHFIT_VERSION},
+      {"clothfit:command", CommandLine(argc, argv)},
+      {"clothfit:model", top.model},
+      {"clothfit:params", top.params},
+      {"clothfit:rows", image.row_titles[0]}};
   if (args.Has("compare") || args.Has("compare-preset")) {
-    image = StackRows(image, RenderOption(args, "compare", "compare-preset",
-                                          options, &slabs));
+    const RenderedRow compare = RenderOption(args, "compare", "compare-preset",
+                                             options, "compare", &slabs);
+    image = StackRows(image, compare.image);
+    header.push_back({"clothfit:compare_model", compare.model});
+    header.push_back({"clothfit:compare_params", compare.params});
+    header[4].second += "\n" + compare.image.row_titles[0];
   }
   double exposure = AutoExposure(image);
   if (args.Has("exposure")) {
@@ -144,9 +211,10 @@ int RunRender(int argc, char** argv) {
       args.Fail("option '--exposure': must be > 0");
     }
   }
-  WritePreview(image, exposure, out, png);
-  std::printf("wrote %s and %s (%d x %d, exposure %.4g)\n", out.c_str(),
-              png.c_str(), image.width, image.height, exposure);
+  header.push_back({"clothfit:exposure", text_util::FormatNumber(exposure)});
+  WritePreview(image, exposure, out, png, header);
+  std::printf("wrote %s (%d x %d) and %s (with labels), exposure %.4g\n",
+              out.c_str(), image.width, image.height, png.c_str(), exposure);
   // SPEC §3.4: the tool says where the slab model is inexact.
   for (const SlabParams& slab : slabs) NoteSlabRegime(slab);
   return 0;

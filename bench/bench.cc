@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <sstream>
 
+#include "bench/bench_charts.h"
 #include "bench/bench_internal.h"
 #include "charts/chart.h"
 #include "io/atomic_file.h"
@@ -118,32 +118,15 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
   md << "# clothfit bench" << (options.quick ? " (quick)" : "") << "\n\n"
      << "Each configuration ran " << std::max(1, options.repeats)
      << " time(s); wall time is the median with [min, max]. Errors are "
-        "against truth held out from the fit (docs/bench.md).\n";
+        "against truth held out from the fit; peak MB growth is the resident "
+        "memory the runs added at their peak (docs/bench.md). The charts "
+        "ring the default configuration.\n";
   for (const std::string& model : models) {
     std::vector<BenchRow> mine;
     for (const BenchRow& r : rows) {
       if (r.model == model) mine.push_back(r);
     }
-    ScatterChart speed;
-    speed.title = model + ": speed against accuracy";
-    speed.x_label = "wall time per fit run [s]";
-    speed.y_label = "held-out relative RMS error";
-    speed.log_x = true;
-    speed.pareto = true;
-    std::map<std::string, size_t> series_of;
-    for (const BenchRow& r : mine) {
-      auto [it, added] = series_of.emplace(r.group, speed.series.size());
-      if (added) {
-        speed.series.push_back(ScatterSeries());
-        speed.series.back().name = r.group;
-        speed.series.back().pareto = true;
-      }
-      ChartPoint p;
-      p.x = r.wall_median_s;
-      p.y = r.value_error;
-      p.highlight = r.is_default;
-      speed.series[it->second].points.push_back(p);
-    }
+    const ScatterChart speed = SpeedAccuracyChart(model, mine);
     const std::string speed_png = dir + "/" + model + "_speed_accuracy.png";
     WriteScatterChartPng(speed, speed_png);
     files.push_back(speed_png);
@@ -191,50 +174,28 @@ std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
     bool sized = false;
     for (const BenchRow& r : mine) sized = sized || std::isfinite(r.size);
     if (sized) {
-      ScatterChart size;
-      size.title = model + ": error against model size";
-      size.x_label = model == "cloth"           ? "tangent samples T per thread"
-                     : model == "lafortune_mip" ? "texels of the mip level"
-                                                : "lobes K";
-      size.log_x = model == "lafortune_mip";
-      size.y_label = "held-out relative RMS error";
-      std::map<std::string, size_t> size_series;
+      std::vector<std::string> groups;
       for (const BenchRow& r : mine) {
-        if (!std::isfinite(r.size)) continue;
-        auto [it, added] = size_series.emplace(r.group, size.series.size());
-        if (added) {
-          size.series.push_back(ScatterSeries());
-          size.series.back().name = r.group;
-          size.series.back().lines = true;
+        if (std::isfinite(r.size) &&
+            std::find(groups.begin(), groups.end(), r.group) == groups.end()) {
+          groups.push_back(r.group);
         }
       }
-      for (auto& [group, index] : size_series) {
+      for (const std::string& group : groups) {
         std::vector<BenchRow> in_group;
         for (const BenchRow& r : mine) {
           if (std::isfinite(r.size) && r.group == group) in_group.push_back(r);
         }
-        std::sort(in_group.begin(), in_group.end(),
-                  [](const BenchRow& a, const BenchRow& b) {
-                    return a.size < b.size;
-                  });
         const double pick = ToleranceChoice(in_group, kSlack);
-        for (const BenchRow& r : in_group) {
-          ChartPoint p;
-          p.x = r.size;
-          p.y = r.value_error;
-          p.highlight = r.size == pick;
-          p.label = r.label;
-          size.series[index].points.push_back(p);
-        }
         md << "\n`--tolerance` just above the best error of " << group << " (+"
            << kSlack * 100 << " %) picks size " << Number(pick) << ".\n";
       }
       const std::string size_png = dir + "/" + model + "_size.png";
-      WriteScatterChartPng(size, size_png);
+      WriteScatterChartPng(ErrorSizeChart(model, mine), size_png);
       files.push_back(size_png);
       md << "\n![error against model size](" << model << "_size.png)\n";
     }
-    md << "\n| config | wall median [min, max] s | CPU s | peak MB | "
+    md << "\n| config | wall median [min, max] s | CPU s | peak MB growth | "
           "held-out error | parameter error | converged |\n"
           "|---|---|---|---|---|---|---|\n";
     for (const BenchRow& r : mine) {

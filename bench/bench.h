@@ -44,13 +44,20 @@ struct BenchRow {
   int repeats = 0;
   double wall_median_s = 0.0, wall_min_s = 0.0, wall_max_s = 0.0;
   double cpu_median_s = 0.0;  // process CPU time (all threads)
-  double peak_mb = 0.0;       // peak resident memory during the runs
-  double value_error = 0.0;   // held-out relative RMS (see above)
-  double param_error = 0.0;   // NaN where there is no parameter truth
-  double size = 0.0;          // model size (lobes; NaN where not swept)
-  bool success = false;       // the fit reported usable and converged
-  std::string group;          // series of the charts (e.g. "lut=on")
-  std::string label;          // beside the point in the size chart
+  // Growth of the resident memory over the runs: peak (VmHWM, reset
+  // before the first run) less the resident size at the start, after the
+  // allocator returned its free memory (bench_common.cc Measure); NaN
+  // where it is not measured.
+  double peak_mb = 0.0;
+  double value_error = 0.0;  // held-out relative RMS (see above)
+  double param_error = 0.0;  // NaN where there is no parameter truth
+  double size = 0.0;         // model size (lobes; NaN where not swept)
+  bool success = false;      // the fit reported usable and converged
+  // The default configuration again as a point of a size sweep (ringed in
+  // the size chart; is_default rings it in the speed chart, once).
+  bool default_size = false;
+  std::string group;  // series of the charts (e.g. "lut=on")
+  std::string label;  // beside the point in the size chart
 };
 
 // peer_note (may be null): what became of the peer ("" when it ran).
@@ -71,9 +78,9 @@ void WriteBenchCsv(const std::vector<BenchRow>& rows, const std::string& path);
 
 // Per model: `<dir>/<model>_speed_accuracy.png` (log wall time against the
 // held-out error, Pareto front, default ringed) and, where a size was
-// swept, `<dir>/<model>_size.png` (error against model size, the size
-// `--tolerance` picks ringed); then `<dir>/summary.md`. Returns the files
-// written.
+// swept, `<dir>/<model>_size.png` (error against model size, the default
+// ringed; bench/bench_charts.h); then `<dir>/summary.md` (with the size
+// `--tolerance` picks). Returns the files written.
 std::vector<std::string> WriteBenchReport(const std::vector<BenchRow>& rows,
                                           const BenchOptions& options,
                                           const std::string& dir,

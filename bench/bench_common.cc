@@ -1,9 +1,11 @@
+#include <malloc.h>
 #include <time.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <string>
 
 #include "bench/bench_internal.h"
 #include "data_synthetic/synthetic_table.h"
@@ -18,19 +20,31 @@ double ProcessCpuSeconds() {
   return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
-// Peak resident memory (MB) since the last ResetPeakMemory: Linux's VmHWM,
-// which writing "5" to /proc/self/clear_refs resets. Where that is not
-// allowed the peak is the process's since it started.
-void ResetPeakMemory() { std::ofstream("/proc/self/clear_refs") << "5"; }
-double PeakMemoryMb() {
+// A memory line of /proc/self/status ("VmRSS:", "VmHWM:") in MB; NaN
+// where it is missing.
+double StatusMb(const std::string& key) {
   std::ifstream status("/proc/self/status");
   std::string line;
   while (std::getline(status, line)) {
-    if (line.rfind("VmHWM:", 0) == 0) {
-      return std::atof(line.c_str() + 6) / 1024.0;  // kB
+    if (line.rfind(key, 0) == 0) {
+      return std::atof(line.c_str() + key.size()) / 1024.0;  // kB
     }
   }
   return kNaN;
+}
+
+// The baseline of a measurement of the memory a run adds: the free memory
+// of the allocator's arenas returned to the system (else a run reuses it
+// unseen, or the process's earlier peak is reported), Linux's high-water
+// mark VmHWM reset to the current resident size by writing "5" to
+// /proc/self/clear_refs (proc(5)), and that size. NaN when the mark is
+// still above the resident size (no reset allowed): the growth is then
+// not measurable.
+double StartPeakMemory() {
+  malloc_trim(0);
+  std::ofstream("/proc/self/clear_refs") << "5";
+  const double resident = StatusMb("VmRSS:");
+  return StatusMb("VmHWM:") <= resident + 1.0 ? resident : kNaN;
 }
 
 }  // namespace
@@ -47,7 +61,7 @@ BenchRow Measure(const BenchOptions& options,
                  const std::function<Outcome()>& run) {
   std::vector<double> wall, cpu;
   BenchRow row;
-  ResetPeakMemory();
+  const double start_mb = StartPeakMemory();
   Outcome outcome;
   for (int r = 0; r < std::max(1, options.repeats); ++r) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -63,7 +77,7 @@ BenchRow Measure(const BenchOptions& options,
   row.wall_min_s = *std::min_element(wall.begin(), wall.end());
   row.wall_max_s = *std::max_element(wall.begin(), wall.end());
   row.cpu_median_s = Median(cpu);
-  row.peak_mb = PeakMemoryMb();
+  row.peak_mb = StatusMb("VmHWM:") - start_mb;
   row.value_error = outcome.value_error;
   row.param_error = outcome.param_error;
   row.success = outcome.success;

@@ -176,6 +176,7 @@ std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
     row.config = config;
     row.group = "tangent samples";
     row.size = t;
+    row.default_size = t == given;  // the default fit of the weave as given
     rows->push_back(row);
   }
   // The cloth peer takes seconds even on the quick bench's table.

@@ -29,7 +29,8 @@ struct Outcome {
 double Median(std::vector<double> v);
 
 // Runs `run` options.repeats times; the outcome is the last run's (the
-// fits are deterministic). Wall and CPU time, peak memory.
+// fits are deterministic). Wall and CPU time, and the resident memory the
+// runs add at their peak (BenchRow::peak_mb).
 BenchRow Measure(const BenchOptions& options,
                  const std::function<Outcome()>& run);
 

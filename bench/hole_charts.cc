@@ -82,10 +82,12 @@ void WriteAngleChart(const AngleCurve& curve, const std::string& title,
     s.colour = colour;
     return s;
   };
+  // Drawn in this order: the truth first, so that the extension, which
+  // matches it closely, stays visible on top of it (dashes and markers).
   chart.series = {
+      series("ground truth", curve.truth, {0, 0, 0}, false, false),
       series("Algorithm 3.1", curve.alg31, {214, 39, 40}, false, false),
-      series("extension", curve.extension, {31, 119, 180}, true, false),
-      series("ground truth", curve.truth, {0, 0, 0}, false, true)};
+      series("extension", curve.extension, {31, 119, 180}, true, true)};
   WriteScatterChartPng(chart, png);
   WriteFileAtomically(csv, text);
 }

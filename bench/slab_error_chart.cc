@@ -2,14 +2,12 @@
 
 #include <cstdio>
 
-#include "charts/heat_map.h"
 #include "io/atomic_file.h"
 #include "io/text_util.h"
 
 namespace clothfit {
 
-void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
-                       const std::string& csv_path) {
+HeatMap SlabErrorHeatMap(const SlabErrorMap& map) {
   const SlabErrorMapOptions& o = map.options;
   HeatMap chart;
   chart.title =
@@ -24,21 +22,28 @@ void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
     chart.y_labels.push_back(text_util::FormatNumber(o.albedos[a], 6));
     for (size_t t = 0; t < n_tau; ++t) {
       const SlabErrorCell& cell = map.cells[a * n_tau + t];
-      panel.values.push_back(cell.relative_rms_error);
+      const double percent = 100.0 * cell.relative_rms_error;
+      panel.values.push_back(percent);
       char text[32];
-      std::snprintf(text, sizeof(text), "%.2g%%",
-                    100.0 * cell.relative_rms_error);
+      std::snprintf(text, sizeof(text), "%.2g%%", percent);
       panel.cell_text.push_back(text);
     }
   }
   chart.panels = {panel};
-  chart.lo = 1e-3;
-  chart.hi = 1.0;
+  chart.lo = 0.1;
+  chart.hi = 100.0;
   chart.log_scale = true;
-  chart.legend = "rel. rms error";
+  chart.legend = "rel. rms error [%]";
+  chart.unit = "%";
   chart.outline_above = true;
-  chart.threshold = 0.01;
+  chart.threshold = 1.0;
   chart.threshold_label = "red outline: error > 1 % (outside the regime)";
+  return chart;
+}
+
+void WriteSlabErrorMap(const SlabErrorMap& map, const std::string& png_path,
+                       const std::string& csv_path) {
+  const HeatMap chart = SlabErrorHeatMap(map);
   // Both written before either is renamed into place would need a
   // transaction; the CSV goes first so that a chart never lacks its data.
   WriteFileAtomically(csv_path, SlabErrorMapCsv(map));

@@ -80,8 +80,8 @@ void ColourRange(const HeatMap& map, double* lo, double* hi) {
   }
 }
 
-std::string Format(double value) {
-  return std::isfinite(value) ? text_util::FormatNumber(value, 3) : "-";
+std::string Format(double value, const std::string& unit) {
+  return std::isfinite(value) ? text_util::FormatNumber(value, 3) + unit : "-";
 }
 
 }  // namespace
@@ -113,9 +113,13 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
   const int panel_w = cols * kCellWidth;
   const int grid_w = n * panel_w + (n - 1) * kGap;
   int baseline = 0;
-  const int width =
-      std::max(kLeft + grid_w + kBarWidth,
-               cv::getTextSize(map.title, kFont, 0.6, 1, &baseline).width + 24);
+  // Wide enough for the title and for the colour bar's caption, which
+  // starts 10 pixels left of the bar (20 right of the grid).
+  const int width = std::max(
+      {kLeft + grid_w + kBarWidth,
+       cv::getTextSize(map.title, kFont, 0.6, 1, &baseline).width + 24,
+       kLeft + grid_w + 10 +
+           cv::getTextSize(map.legend, kFont, 0.4, 1, &baseline).width + 12});
   const int height = kTop + rows * kCellHeight + kBottom;
   cv::Mat img(height, width, CV_8UC3, kPaper);
   cv::putText(img, map.title, cv::Point(12, 30), kFont, 0.6, kInk, 1,
@@ -143,8 +147,10 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
               cv::Rect(cell.x + 2, cell.y + 2, cell.width - 4, cell.height - 4),
               kAlarm, 2);
         }
-        Centred(&img, panel.cell_text.empty() ? Format(v) : panel.cell_text[i],
-                cell.x + kCellWidth / 2, cell.y + kCellHeight / 2, 0.42, fill);
+        Centred(
+            &img,
+            panel.cell_text.empty() ? Format(v, map.unit) : panel.cell_text[i],
+            cell.x + kCellWidth / 2, cell.y + kCellHeight / 2, 0.42, fill);
       }
     }
     for (int c = 0; c < cols; ++c) {
@@ -181,8 +187,8 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
             : lo + t * (hi - lo);
     const int y = kTop + static_cast<int>((1.0 - t) * (bar_h - 1));
     cv::line(img, cv::Point(bar_x + 20, y), cv::Point(bar_x + 25, y), kInk);
-    cv::putText(img, Format(value), cv::Point(bar_x + 28, y + 5), kFont, 0.4,
-                kInk, 1, cv::LINE_AA);
+    cv::putText(img, Format(value, map.unit), cv::Point(bar_x + 28, y + 5),
+                kFont, 0.4, kInk, 1, cv::LINE_AA);
   }
   cv::putText(img, map.legend, cv::Point(bar_x - 10, kTop - 10), kFont, 0.4,
               kInk, 1, cv::LINE_AA);

@@ -34,6 +34,10 @@ struct HeatMap {
   double lo = 0.0, hi = 0.0;
   bool log_scale = false;  // colours by log10 (lo, hi > 0)
   std::string legend;      // colour bar caption
+  // The values' unit, appended to the colour bar's tick labels and to the
+  // cells' default text (e.g. "%": values 0.5 and 12 read "0.5%", "12%");
+  // a cell_text given should use the same unit.
+  std::string unit;
   // With outline_above, cells whose value exceeds `threshold` get a red
   // outline, explained by threshold_label under the grid.
   bool outline_above = false;

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/table.h"
@@ -58,9 +59,11 @@ void WriteImageStack(const MeasurementTable& table,
 // `colour_channels` (1 or 3) plus alpha when `with_alpha`, pixels
 // interleaved row by row (row 0 at the top); float_pixels: stored as FLOAT
 // (EXR, TIFF), else as 8 bit (PNG; values in [0, 1]). Throws InputError
-// naming the path.
-void WriteImage(const std::string& path, int width, int height,
-                int colour_channels, bool with_alpha, bool float_pixels,
-                const std::vector<float>& pixels);
+// naming the path. `attributes`: string attributes (name, value) of the
+// file's header (OpenEXR: Imf::StringAttribute; e.g. "clothfit:command").
+void WriteImage(
+    const std::string& path, int width, int height, int colour_channels,
+    bool with_alpha, bool float_pixels, const std::vector<float>& pixels,
+    const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
 }  // namespace clothfit

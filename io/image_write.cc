@@ -66,9 +66,10 @@ std::string PairLabel(size_t pair, const TableRow& row) {
 
 }  // namespace
 
-void WriteImage(const std::string& path, int width, int height,
-                int colour_channels, bool with_alpha, bool float_pixels,
-                const std::vector<float>& pixels) {
+void WriteImage(
+    const std::string& path, int width, int height, int colour_channels,
+    bool with_alpha, bool float_pixels, const std::vector<float>& pixels,
+    const std::vector<std::pair<std::string, std::string>>& attributes) {
   // No image holds a NaN or infinity: a renderer would show it as black or
   // as a firefly, and clothfit's readers refuse it.
   const int stride = colour_channels + (with_alpha ? 1 : 0);
@@ -102,6 +103,7 @@ void WriteImage(const std::string& path, int width, int height,
     spec.alpha_channel = colour_channels;
   }
   spec.attribute("oiio:UnassociatedAlpha", 1);
+  for (const auto& [name, value] : attributes) spec.attribute(name, value);
 
   // The format was chosen above from the target's extension; the file is
   // written under a temporary name beside it.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "io/image_stack.h"
 #include "io/input_error.h"
@@ -9,6 +10,8 @@
 namespace clothfit {
 
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A direction in the frame (x_s, y_s, n).
 glm::dvec3 ToLocal(const glm::dvec3& w, const glm::dvec3& x_s,
@@ -20,6 +23,8 @@ PreviewImage Blank(int panels, int size) {
   PreviewImage image;
   image.width = panels * size;
   image.height = size;
+  image.panel_size = size;
+  image.panel_warp_deg.assign(panels, kNaN);
   image.pixels.assign(size_t(image.width) * image.height, glm::dvec3(0.0));
   return image;
 }
@@ -62,9 +67,8 @@ struct ThreadLayout {
   const char* title;
   double warp_deg;
 };
-constexpr ThreadLayout kThreadLayouts[] = {{"threads vertical", 0.0},
-                                           {"threads horizontal", 90.0},
-                                           {"threads diagonal", 45.0}};
+constexpr ThreadLayout kThreadLayouts[] = {
+    {"warp vertical", 0.0}, {"warp horizontal", 90.0}, {"warp diagonal", 45.0}};
 
 }  // namespace
 
@@ -94,6 +98,7 @@ PreviewImage RenderCylinders(const SurfaceRho& rho,
   const double pixel = 2.0 * kPanelExtent / size;
   for (int panel = 0; panel < 3; ++panel) {
     image.panel_titles.push_back(kThreadLayouts[panel].title);
+    image.panel_warp_deg[panel] = kThreadLayouts[panel].warp_deg;
     const double alpha = Radians(kThreadLayouts[panel].warp_deg);
     const double ca = std::cos(alpha), sa = std::sin(alpha);
     for (int j = 0; j < size; ++j) {
@@ -211,7 +216,7 @@ PreviewImage RenderHoles(const HolesModel& model,
 }
 
 PreviewImage StackRows(const PreviewImage& top, const PreviewImage& bottom) {
-  if (top.width != bottom.width) {
+  if (top.width != bottom.width || top.panel_size != bottom.panel_size) {
     throw InputError("cannot place renders of different layouts (" +
                      std::to_string(top.width) + " and " +
                      std::to_string(bottom.width) +
@@ -221,6 +226,14 @@ PreviewImage StackRows(const PreviewImage& top, const PreviewImage& bottom) {
   out.height += bottom.height;
   out.pixels.insert(out.pixels.end(), bottom.pixels.begin(),
                     bottom.pixels.end());
+  auto append = [](auto* to, const auto& from) {
+    to->insert(to->end(), from.begin(), from.end());
+  };
+  append(&out.panel_titles, bottom.panel_titles);
+  append(&out.panel_warp_deg, bottom.panel_warp_deg);
+  // One title per row: rows without one get an empty title.
+  out.row_titles.resize(top.panel_size > 0 ? top.height / top.panel_size : 0);
+  append(&out.row_titles, bottom.row_titles);
   return out;
 }
 
@@ -238,21 +251,18 @@ double AutoExposure(const PreviewImage& image) {
 }
 
 void WritePreview(const PreviewImage& image, double exposure,
-                  const std::string& exr_path, const std::string& png_path) {
-  std::vector<float> linear, display;
+                  const std::string& exr_path, const std::string& png_path,
+                  const std::vector<ExrAttribute>& attributes) {
+  std::vector<float> linear;
   linear.reserve(image.pixels.size() * 3);
-  display.reserve(image.pixels.size() * 3);
   for (const glm::dvec3& v : image.pixels) {
-    for (int c = 0; c < 3; ++c) {
-      linear.push_back(static_cast<float>(v[c]));
-      // sRGB transfer curve of the exposed, clamped value.
-      const double x = std::clamp(v[c] * exposure, 0.0, 1.0);
-      display.push_back(static_cast<float>(
-          x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055));
-    }
+    for (int c = 0; c < 3; ++c) linear.push_back(static_cast<float>(v[c]));
   }
-  WriteImage(exr_path, image.width, image.height, 3, false, true, linear);
-  WriteImage(png_path, image.width, image.height, 3, false, false, display);
+  const DisplayImage display = LabelledDisplay(image, exposure);
+  WriteImage(exr_path, image.width, image.height, 3, false, true, linear,
+             attributes);
+  WriteImage(png_path, display.width, display.height, 3, false, false,
+             display.rgb);
 }
 
 }  // namespace clothfit

@@ -27,6 +27,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/material.h"
@@ -40,18 +41,27 @@ inline constexpr double kHolesOpaqueAlbedo = 0.6;
 inline constexpr double kPanelExtent = 1.2;  // world half-width of a panel
 
 struct PreviewOptions {
-  int size = 96;                                   // pixels per panel side
+  int size = 192;                                  // pixels per panel side
   glm::dvec3 light{0.5, 0.5, 0.7071067811865476};  // unit, towards the light
   double light_distance = 6.0;                     // world units
   double tilt_deg = 35.0;                          // slab and holes panels
   double tile = 0.8;  // world size of one repeat of a texture (MipmapRho)
 };
 
-// Linear radiance, row-major, row 0 at the top.
+// Linear radiance, row-major, row 0 at the top: one or more rows
+// (StackRows) of square panels of panel_size pixels.
 struct PreviewImage {
-  int width = 0, height = 0;
+  int width = 0, height = 0, panel_size = 0;
   std::vector<glm::dvec3> pixels;
-  std::vector<std::string> panel_titles;  // left to right
+  // Per panel, row by row, left to right: its title (e.g. "warp
+  // vertical") and, for a cylinder, the warp's angle from the cylinder's
+  // axis in degrees (0: vertical on screen, 90: horizontal; NaN for
+  // panels that are not cylinders).
+  std::vector<std::string> panel_titles;
+  std::vector<double> panel_warp_deg;
+  // Per row of panels, top to bottom: what it shows (e.g. "fit: P.json");
+  // may be empty.
+  std::vector<std::string> row_titles;
   glm::dvec3& At(int x, int y) { return pixels[size_t(y) * width + x]; }
   const glm::dvec3& At(int x, int y) const {
     return pixels[size_t(y) * width + x];
@@ -96,17 +106,36 @@ PreviewImage RenderSlab(const SlabParams& params,
 PreviewImage RenderHoles(const HolesModel& model,
                          const PreviewOptions& options);
 
-// `top` above `bottom` (same width). Throws InputError otherwise.
+// `top` above `bottom` (same width and panel size; the titles follow).
+// Throws InputError otherwise.
 PreviewImage StackRows(const PreviewImage& top, const PreviewImage& bottom);
 
 // The exposure that maps the 99th percentile of the pixels' largest channel
 // to 1 (1 for a black image).
 double AutoExposure(const PreviewImage& image);
 
-// Writes the linear image as OpenEXR (float RGB) and, tone-mapped
-// (exposure, clamp to [0, 1], sRGB transfer curve), as 8-bit PNG; both
-// atomically. Throws InputError naming the path.
+// The height of the label band above each row of panels in the PNG.
+inline constexpr int kLabelBand = 44;
+
+// The tone-mapped image (exposure, clamp to [0, 1], sRGB transfer curve)
+// with a white band of kLabelBand pixels above each row of panels: the
+// row's title, each panel's title and, for a cylinder, a double-headed
+// arrow along its warp (render/preview_labels.cc). Interleaved RGB in
+// [0, 1], width x (height + rows kLabelBand).
+struct DisplayImage {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+};
+DisplayImage LabelledDisplay(const PreviewImage& image, double exposure);
+
+// A string attribute of the EXR's header (name, value).
+using ExrAttribute = std::pair<std::string, std::string>;
+
+// Writes the linear image as OpenEXR (float RGB, no labels; `attributes` in
+// its header) and LabelledDisplay as 8-bit PNG; both atomically. Throws
+// InputError naming the path.
 void WritePreview(const PreviewImage& image, double exposure,
-                  const std::string& exr_path, const std::string& png_path);
+                  const std::string& exr_path, const std::string& png_path,
+                  const std::vector<ExrAttribute>& attributes = {});
 
 }  // namespace clothfit

@@ -92,8 +92,9 @@ TEST(Render, CylinderPanelsTurnTheWarpVerticalHorizontalDiagonal) {
   lobe.params.lobes = {x_only};
   const PreviewImage image = RenderCylinders(lobe, o);
   EXPECT_EQ(image.panel_titles,
-            (std::vector<std::string>{"threads vertical", "threads horizontal",
-                                      "threads diagonal"}));
+            (std::vector<std::string>{"warp vertical", "warp horizontal",
+                                      "warp diagonal"}));
+  EXPECT_EQ(image.panel_warp_deg, (std::vector<double>{0.0, 90.0, 45.0}));
   double lit = 0.0;
   for (int panel = 0; panel < 3; ++panel) {
     const double a = Radians(panel == 0 ? 0.0 : panel == 1 ? 90.0 : 45.0);
@@ -176,7 +177,7 @@ TEST(Render, MipmapTextureRepeatsEveryTileAndReadsTheFootprintsLevel) {
 }
 
 // The cylinders of a mip map: each pixel shows the texel under its
-// texture coordinates (threads vertical: u = y along the axis, v = -asin(x)
+// texture coordinates (warp vertical: u = y along the axis, v = -asin(x)
 // around it; threads horizontal: u = asin(x), v = y) at its footprint's
 // level, lit like a diffuse surface.
 TEST(Render, MipmapCylindersMapTheTextureAlongTheWarp) {
@@ -331,10 +332,11 @@ TEST(RenderCli, PresetAgainstPresetWritesExrAndPngOneRowEach) {
       ReadImage((dir / "satin.exr").string(), &w, &h);
   EXPECT_EQ(w, 48);
   EXPECT_EQ(h, 32);
+  // The PNG: a label band above each of the two rows.
   int pw = 0, ph = 0;
   ReadImage((dir / "satin.png").string(), &pw, &ph);
   EXPECT_EQ(pw, 48);
-  EXPECT_EQ(ph, 32);
+  EXPECT_EQ(ph, 32 + 2 * kLabelBand);
   // The rows differ: front and back of the satin.
   double top = 0.0, bottom = 0.0;
   for (size_t i = 0; i < exr.size() / 2; ++i) top += exr[i];
