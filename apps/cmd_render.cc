@@ -118,9 +118,10 @@ int RunRender(int argc, char** argv) {
       "tone-mapped PNG\nwith a label above each row (which file) and panel "
       "(which orientation, an arrow along the\nwarp); render/preview.h "
       "describes the scene.");
-  args.Option("params", "P.json",
-              "parameter file (SPEC §4, or holes), or a Lafortune parameter "
-              "mip map P.exr");
+  args.Option(
+      "params", "P.json",
+      "parameter file (docs/formats.md, or holes), or a Lafortune parameter "
+      "mip map P.exr");
   args.Option("preset", "NAME", "a preset instead of --params");
   args.Option("compare", "Q.json", "a second parameter file, rendered below");
   args.Option("compare-preset", "NAME", "a preset instead of --compare");
@@ -215,7 +216,7 @@ int RunRender(int argc, char** argv) {
   WritePreview(image, exposure, out, png, header);
   std::printf("wrote %s (%d x %d) and %s (with labels), exposure %.4g\n",
               out.c_str(), image.width, image.height, png.c_str(), exposure);
-  // SPEC §3.4: the tool says where the slab model is inexact.
+  // docs/models.md: the tool says where the slab model is inexact.
   for (const SlabParams& slab : slabs) NoteSlabRegime(slab);
   return 0;
 }
