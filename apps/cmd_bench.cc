@@ -5,9 +5,11 @@
 
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "apps/commands.h"
+#include "apps/progress.h"
 #include "bench/bench.h"
 #include "bench/stability.h"
 #include "io/atomic_file.h"
@@ -74,9 +76,9 @@ int RunBench(int argc, char** argv) {
                          : "python3";
     options.scratch_dir = dir;
   }
-  options.progress = [](const std::string& what) {
-    std::fprintf(stderr, "bench: %s\n", what.c_str());
-  };
+  // Each configuration on the progress line (a terminal only).
+  auto task = std::make_shared<progress::Task>("bench", "");
+  options.progress = [task](const std::string& what) { task->Say(what); };
   if (args.Has("stability")) {
     for (const std::string& file :
          WriteStabilityReport(RunStability(options), dir)) {
