@@ -24,6 +24,14 @@ cv::Mat DrawScatterChart(const ScatterChart& spec);
 
 }  // namespace
 
+std::vector<double> AxisTicks(double low, double high, bool log) {
+  Axis axis;
+  axis.log = log;
+  axis.low = axis.Unit(low);
+  axis.high = axis.Unit(high);
+  return axis.Ticks();
+}
+
 std::vector<std::pair<int, int>> ParetoFront(const ScatterChart& spec) {
   std::vector<std::pair<int, int>> all;
   for (size_t s = 0; s < spec.series.size(); ++s) {

@@ -48,6 +48,13 @@ struct ScatterChart {
   int width = 900, height = 600;
 };
 
+// The labelled ticks of an axis over [low, high] (data units, low < high;
+// positive for a log axis): on a log axis the decades, or with 2 and 5, or
+// every mantissa 1..9, whichever first gives 3 to 12 labels (linear ticks
+// when none does); on a linear axis 1, 2 or 5 times a power of ten, about
+// six of them.
+std::vector<double> AxisTicks(double low, double high, bool log);
+
 // Indices (series, point) of the Pareto-optimal points among the series
 // with pareto = true: no other point has both x <= and y <= with one
 // strictly smaller. Sorted by x.

@@ -91,7 +91,7 @@ void WriteImageChartPng(const ImageChart& chart, const std::string& path) {
   }
   VerticalText(&image,
                chart.colour_label + (chart.log_colour ? " (log scale)" : ""),
-               image.cols - 22, top + h / 2, 0.45);
+               bx + 72, top + h / 2, 0.45);
   WritePng(image, path);
 }
 

@@ -127,7 +127,7 @@ std::vector<ScatterChart> ResidualFigures(const RowComparison& rows,
     }
     chart.series.push_back(s);
     chart.width = 900;
-    chart.height = 330;
+    chart.height = 300;
     charts.push_back(chart);
   }
   return charts;
