@@ -77,10 +77,10 @@ struct PolarPanel {
   double incidence_deg = 0.0;                              // an arrow
 };
 
-// Panels in rows of up to four, one radial scale (the largest measured
-// value, or the model's where there are none; the curve is clipped to its
-// panel beyond it), rings labelled with their value in `value_label`, the
-// angle theta_o labelled every 30 degrees (polar_chart.cc).
+// Panels in rows of up to four, one radial scale (the largest of the
+// measured values and the 90th percentile of the model's; the curve is
+// clipped at the rim beyond it), rings labelled with their value in
+// `value_label`, the angle theta_o labelled every 30 degrees (polar_chart.cc).
 void WritePolarPlotPng(const std::vector<PolarPanel>& panels,
                        const std::string& title, const std::string& path,
                        const std::string& value_label = "value");

@@ -18,22 +18,29 @@ constexpr int kPanelH = kRadius + 95;      // title above, ring labels below
 constexpr int kColumns = 4;
 constexpr int kHeader = 62;  // figure title and legend
 
-// The radial scale: the largest measured value (the dots are the data; a
-// model far above them would flatten them), the model's where there are
-// none, or up to twice the measured where the model rises above them.
+// The radial scale: the larger of the largest measured value and the 90th
+// percentile of the model's curve points, so that neither a model's narrow
+// peak (a specular lobe hundreds of times the rest) flattens everything
+// else nor a couple of dim rows flatten the model; beyond it the curve is
+// clipped at the rim.
 double RadialScale(const std::vector<PolarPanel>& panels) {
-  double measured = 0.0, model = 0.0;
+  double measured = 0.0;
+  std::vector<double> model;
   for (const PolarPanel& p : panels) {
     for (double v : p.measured_value) {
       if (std::isfinite(v)) measured = std::max(measured, v);
     }
     for (double v : p.model_value) {
-      if (std::isfinite(v)) model = std::max(model, v);
+      if (std::isfinite(v)) model.push_back(v);
     }
   }
-  const double scale = measured > 0.0
-                           ? std::max(measured, std::min(model, 2.0 * measured))
-                           : model;
+  double typical = 0.0;
+  if (!model.empty()) {
+    const auto at = model.begin() + (model.size() * 9) / 10;
+    std::nth_element(model.begin(), at, model.end());
+    typical = *at;
+  }
+  const double scale = std::max(measured, typical);
   return scale > 0.0 ? scale : 1.0;
 }
 
