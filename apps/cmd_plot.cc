@@ -1,115 +1,179 @@
-// clothfit plot: polar plots of a model against measured values in the
-// plane of incidence, a panel per incidence angle (like Daubert et al.
-// 2001, Figs. 3-8).
-#include <cmath>
+// clothfit plot: the figures of a model against a measurement table
+// (report/fit_figures.h; docs/plots.md says what each shows).
 #include <cstdio>
-#include <sstream>
+#include <filesystem>
 
 #include "apps/commands.h"
-#include "charts/chart.h"
 #include "io/atomic_file.h"
 #include "io/text_util.h"
+#include "report/fit_figures.h"
 
 namespace clothfit {
 namespace {
 
-// Mean of the three channels (the plot's value).
-double Grey(const glm::dvec3& v) { return (v.x + v.y + v.z) / 3.0; }
+std::string FigureList() {
+  std::string list;
+  for (const std::string& name : kFigureNames) {
+    list += (list.empty() ? "" : ",") + name;
+  }
+  return list;
+}
+
+bool EndsWith(const std::string& s, const std::string& end) {
+  return s.size() >= end.size() &&
+         s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
 
 }  // namespace
 
-int RunPlot(int argc, char** argv) {
-  CommandArgs args(
-      "plot",
-      "clothfit plot (--params P.json | --preset NAME) --data T.csv --out "
-      "plot.png [--incidence-deg LIST] [--phi-deg PHI] [--window-deg W]",
-      "Draws, for each incidence angle, the slice of the model in the plane "
-      "of incidence at azimuth PHI\n(a curve) and the measured rows near it "
-      "(dots: theta_i and phi_i within W of the panel's, wo\nwithin W of the "
-      "plane), as a polar plot: angle = theta_o (positive: away from the "
-      "light), radius =\nthe value (mean of r,g,b) in the table's quantity.");
-  args.Option("params", "P.json", "parameter file (SPEC §4)");
-  args.Option("preset", "NAME", "a preset instead of --params");
-  args.Option("data", "T.csv", "measurement table (SPEC §2)");
-  args.Option("out", "plot.png", "output PNG");
-  args.Option("incidence-deg", "LIST", "incidence angles, comma-separated",
-              "0,30,60");
-  args.Option("phi-deg", "PHI", "azimuth of the plane of incidence", "0");
-  args.Option("window-deg", "W", "how far measured rows may lie from a panel",
-              "5");
-  if (!args.Parse(argc, argv, 2)) return 0;
-  const std::string out_path = args.Required("out");
-  CheckWritable(out_path);
-  const MeasurementTable table = ReadTableOption(args, args.Required("data"));
-  if (table.quantity == Quantity::kTransmittance) {
-    args.Fail(args.Get("data") + ": plot draws reflection, not transmittance");
-  }
-  const ParamFile model =
-      LoadEvaluableModel(args, table.quantity, args.Get("data"));
-  const double phi = Radians(args.GetDouble("phi-deg"));
-  const double window = Radians(args.GetDouble("window-deg"));
-  if (!(window > 0.0 && window < kPi / 2)) {
+void AddPlotOptions(CommandArgs* args) {
+  args->Option("params", "P.json", "parameter file (SPEC §4)");
+  args->Option("preset", "NAME", "a preset instead of --params");
+  args->Option("data", "T.csv", "measurement table (SPEC §2)");
+  args->Option("incidence-deg", "LIST",
+               "incidence angles of the polar panels, comma-separated",
+               "0,30,60");
+  args->Option("phi-deg", "PHI", "azimuth of the polar panels' plane", "0");
+  args->Option("window-deg", "W",
+               "how far measured rows may lie from a polar panel", "5");
+}
+
+PlotOptions ReadPlotOptions(const CommandArgs& args) {
+  PlotOptions options;
+  options.phi_deg = args.GetDouble("phi-deg");
+  options.window_deg = args.GetDouble("window-deg");
+  if (!(options.window_deg > 0.0 && options.window_deg < 90.0)) {
     args.Fail("option '--window-deg': must be in (0, 90)");
   }
-  const std::vector<double> incidences =
-      NumberListOption(args, "incidence-deg");
-  for (const double deg : incidences) {
+  options.incidence_deg = NumberListOption(args, "incidence-deg");
+  for (const double deg : options.incidence_deg) {
     if (!(deg >= 0.0 && deg < 90.0)) {
       args.Fail("option '--incidence-deg': " + text_util::FormatNumber(deg) +
                 " is not an angle in [0, 90)");
     }
   }
-  // A panel each, side by side: more would not be readable, and ~3000 made
-  // an image too wide for the PNG encoder.
+  // Four panels a row: more would not be readable.
   constexpr size_t kMaxPanels = 16;
-  if (incidences.size() > kMaxPanels) {
+  if (options.incidence_deg.size() > kMaxPanels) {
     args.Fail("option '--incidence-deg': at most " +
               std::to_string(kMaxPanels) + " angles (a panel each), got " +
-              std::to_string(incidences.size()));
+              std::to_string(options.incidence_deg.size()));
   }
-  // In-plane unit vector towards the light's azimuth, and the normal of the
-  // plane of incidence.
-  const glm::dvec3 u(std::cos(phi), std::sin(phi), 0.0);
-  const glm::dvec3 across(-std::sin(phi), std::cos(phi), 0.0);
-  std::vector<PolarPanel> panels;
-  for (double deg : incidences) {
-    PolarPanel panel;
-    panel.incidence_deg = deg;
-    const double ti = Radians(deg);
-    const glm::dvec3 wi = std::sin(ti) * u + glm::dvec3(0, 0, std::cos(ti));
-    for (int a = -89; a <= 89; ++a) {
-      const double to = Radians(a);
-      const glm::dvec3 wo = -std::sin(to) * u + glm::dvec3(0, 0, std::cos(to));
-      panel.model_angle_deg.push_back(a);
-      panel.model_value.push_back(
-          Grey(Evaluate(model.params, wi, wo, table.quantity)));
+  return options;
+}
+
+std::string PlotLabel(const CommandArgs& args) {
+  auto name = [&](const std::string& option) {
+    return std::filesystem::path(args.Get(option)).filename().string();
+  };
+  const std::string model =
+      args.Has("preset") ? "preset " + args.Get("preset") : name("params");
+  return model + (args.Has("data") ? " against " + name("data") : "");
+}
+
+ParamFile LoadPlotInputs(const CommandArgs& args,
+                         std::optional<MeasurementTable>* table) {
+  if (args.Has("data")) {
+    *table = ReadTableOption(args, args.Get("data"));
+    if ((*table)->quantity == Quantity::kTransmittance) {
+      args.Fail(args.Get("data") +
+                ": the figures draw reflection, not transmittance");
     }
-    for (const TableRow& row : table.rows) {
-      if (!(row.wo.z > 0.0)) continue;
-      // Near the panel's light: the angle between wi and the panel's.
-      if (std::acos(std::clamp(glm::dot(row.wi, wi), -1.0, 1.0)) > window) {
-        continue;
-      }
-      if (std::abs(std::asin(std::clamp(glm::dot(row.wo, across), -1.0, 1.0))) >
-          window) {
-        continue;
-      }
-      panel.measured_angle_deg.push_back(
-          Degrees(std::atan2(-glm::dot(row.wo, u), row.wo.z)));
-      panel.measured_value.push_back(Grey(row.value));
-    }
-    char title[96];
-    std::snprintf(title, sizeof(title), "theta_i = %g deg (%zu rows)", deg,
-                  panel.measured_value.size());
-    panel.title = title;
-    panels.push_back(std::move(panel));
   }
-  WritePolarPlotPng(panels,
-                    std::string(ModelName(model.params)) + " against " +
-                        args.Get("data") + " (" +
-                        std::string(QuantityName(table.quantity)) + ")",
-                    out_path);
-  std::printf("wrote %s\n", out_path.c_str());
+  return LoadEvaluableModel(
+      args, *table ? (*table)->quantity : Quantity::kBrdf,
+      *table ? args.Get("data") : std::string("the figures (BRDF)"));
+}
+
+void PrintNotes(const std::vector<std::string>& notes) {
+  for (const std::string& note : notes)
+    std::fprintf(stderr, "%s\n", note.c_str());
+}
+
+int RunPlot(int argc, char** argv) {
+  CommandArgs args(
+      "plot",
+      "clothfit plot (--params P.json | --preset NAME) [--data T.csv] --out "
+      "DIR/|PREFIX|P.png [--figures LIST] [--incidence-deg LIST] [--phi-deg "
+      "PHI] [--window-deg W]",
+      "Draws a model against a measurement table, one PNG per figure:\n"
+      "  scatter    model against measured, every row (log axes for a wide "
+      "range)\n"
+      "  residuals  relative residual of every row against theta_i, theta_o "
+      "and the phase angle\n"
+      "  polar      per incidence, the slice in the plane of incidence at "
+      "azimuth PHI (curve)\n"
+      "             and the rows within W of it (dots), \"N of M rows\" per "
+      "panel\n"
+      "  halfdiff   the model over theta_h, theta_d (Rusinkiewicz) at phi_d = "
+      "90 deg\n"
+      "  sphere     a sphere under one directional light, seen "
+      "orthographically\n"
+      "  albedo     the directional albedo a(theta_o) at phi_o = 0, 45, 90 "
+      "deg\n"
+      "--out DIR/ (or an existing folder) writes DIR/NAME.png; another "
+      "PREFIX writes PREFIX_NAME.png;\n"
+      "--out P.png writes only the polar figure to P.png. The first three "
+      "need --data\n(without it they are skipped with a note). See "
+      "docs/plots.md.");
+  AddPlotOptions(&args);
+  args.Option("out", "DIR/|PREFIX|P.png", "where the figures go");
+  args.Option("figures", "LIST", "figures to draw, comma-separated",
+              FigureList());
+  // --out names a folder or a prefix: each figure's file is checked below.
+  args.Files({"data", "params"}, {});
+  if (!args.Parse(argc, argv, 2)) return 0;
+  const std::string out = args.Required("out");
+  const bool single_polar = EndsWith(out, ".png");
+  std::vector<std::string> figures = ListOption(args, "figures");
+  for (const std::string& name : figures) {
+    if (std::find(kFigureNames.begin(), kFigureNames.end(), name) ==
+        kFigureNames.end()) {
+      args.Fail("option '--figures': unknown figure '" + name + "'" +
+                text_util::DidYouMean(name, kFigureNames) + " (one of " +
+                FigureList() + ")");
+    }
+  }
+  if (single_polar && args.Has("figures")) {
+    args.Fail("option '--figures': --out " + out +
+              " is the single polar figure; give a folder (DIR/) or a prefix "
+              "for several");
+  }
+  if (single_polar) figures = {"polar"};
+  for (const std::string& name : figures) {
+    if (FigureNeedsData(name) && !args.Has("data") &&
+        (args.Has("figures") || single_polar)) {
+      args.Fail("figure '" + name + "' needs a table: give --data T.csv");
+    }
+  }
+  const PlotOptions options = ReadPlotOptions(args);
+  std::optional<MeasurementTable> table;
+  const ParamFile model = LoadPlotInputs(args, &table);
+  // Where each figure goes; each checked before any is drawn.
+  const bool folder = !single_polar && (EndsWith(out, "/") ||
+                                        std::filesystem::is_directory(out));
+  auto path_of = [&](const std::string& name) {
+    if (single_polar) return out;
+    if (folder) return (std::filesystem::path(out) / (name + ".png")).string();
+    return out + "_" + name + ".png";
+  };
+  if (folder) {
+    std::error_code error;
+    std::filesystem::create_directories(out, error);
+    if (error)
+      args.Fail(out + ": cannot create the folder: " + error.message());
+  }
+  for (const std::string& name : figures) {
+    if (FigureNeedsData(name) && !args.Has("data")) continue;
+    args.CheckDerivedOutput("the " + name + " figure", path_of(name));
+  }
+  const WrittenFigures written =
+      WriteFitFigures(model.params, PlotLabel(args), table ? &*table : nullptr,
+                      figures, options, path_of);
+  for (const auto& [name, path] : written.files) {
+    std::printf("wrote %s\n", path.c_str());
+  }
+  PrintNotes(written.notes);
   // SPEC §3.4: the tool says where the slab model is inexact.
   if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
     NoteSlabRegime(*slab);

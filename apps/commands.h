@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,10 +25,26 @@ int RunFitHoles(int argc, char** argv);      // fit --model holes
 int RunHoles(int argc, char** argv);         // holes analyze|eval|truth
 int RunPlot(int argc, char** argv);
 int RunRender(int argc, char** argv);
+int RunReport(int argc, char** argv);
 int RunSynthSlab(int argc, char** argv);  // synth --model slab
 int RunPreset(int argc, char** argv);
 int RunPresets(int argc, char** argv);
 int RunSynth(int argc, char** argv);
+
+// plot and report (apps/cmd_plot.cc; clothfit-full only): the model
+// options (--params, --preset) and the polar panels' (--incidence-deg,
+// --phi-deg, --window-deg); PlotLabel names the model and --data for
+// titles; PrintNotes prints WriteFitFigures' notes on stderr.
+struct PlotOptions;
+void AddPlotOptions(CommandArgs* args);
+PlotOptions ReadPlotOptions(const CommandArgs& args);
+std::string PlotLabel(const CommandArgs& args);
+void PrintNotes(const std::vector<std::string>& notes);
+// The table of --data (if given; not transmittance) into *table, and the
+// model of --params / --preset, evaluable as the table's quantity (the
+// BRDF without a table).
+ParamFile LoadPlotInputs(const CommandArgs& args,
+                         std::optional<MeasurementTable>* table);
 
 // --quantity value: "brdf" | "cosine_weighted" (models predict no
 // transmittance).

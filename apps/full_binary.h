@@ -2,7 +2,7 @@
 // files and parameter mip maps, and loads no image library (OpenImageIO and
 // OpenCV bring some 260 shared libraries, ~0.15 s, to every start);
 // `clothfit-full`, installed beside it, has every command. `clothfit` runs
-// `clothfit-full` with its own arguments for what needs images: plot,
+// `clothfit-full` with its own arguments for what needs images: plot, report,
 // render, bench, holes, `fit --stack`, `fit --model holes`, `synth --stack`,
 // `synth --model slab --error-map`, and a holes parameter file.
 #pragma once

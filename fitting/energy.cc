@@ -56,13 +56,21 @@ EnergyCheck ModelEnergy(const ModelParams& params) {
   }
   EnergyCheck out;
   const HemisphereQuadrature q = MakeHemisphereQuadrature(36);
-  auto rho = [&](const glm::dvec3& wi, const glm::dvec3& wo) {
-    return Evaluate(params, wi, wo, Quantity::kCosineWeighted);
-  };
   for (const glm::dvec3& d : FurnaceDirections(8)) {
-    Consider(QuadratureViewAlbedo(rho, d, q), d, &out);
+    Consider(ModelViewAlbedo(params, d, q), d, &out);
   }
   return out;
+}
+
+glm::dvec3 ModelViewAlbedo(const ModelParams& params, const glm::dvec3& wo,
+                           const HemisphereQuadrature& q) {
+  if (const auto* m = std::get_if<LafortuneModel>(&params)) {
+    return LafortuneViewAlbedo(*m, wo);
+  }
+  auto rho = [&](const glm::dvec3& wi, const glm::dvec3& v) {
+    return Evaluate(params, wi, v, Quantity::kCosineWeighted);
+  };
+  return QuadratureViewAlbedo(rho, wo, q);
 }
 
 int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fitting/fit_result.h"
+#include "models/albedo.h"
 #include "models/evaluate.h"
 
 namespace clothfit {
@@ -24,6 +25,14 @@ EnergyCheck LafortuneEnergy(const LafortuneModel& m);
 // Any model by quadrature (36 rings) at FurnaceDirections(8); a Lafortune
 // model by LafortuneEnergy.
 EnergyCheck ModelEnergy(const ModelParams& p);
+
+// The directional albedo a(wo) of any model (models/albedo.h), per
+// channel: a Lafortune texel by LafortuneViewAlbedo, any other model by
+// QuadratureViewAlbedo with `q` (ModelEnergy uses MakeHemisphereQuadrature
+// (36)). The one directional albedo of a ModelParams (the plot's curve,
+// the furnace check).
+glm::dvec3 ModelViewAlbedo(const ModelParams& p, const glm::dvec3& wo,
+                           const HemisphereQuadrature& q);
 
 // Lowers each stored view's T (per channel) to 1 / the bracket's albedo
 // at that view where T times it exceeds 1 (LafortuneViewAlbedo at the

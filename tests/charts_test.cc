@@ -86,6 +86,36 @@ TEST(ChartTest, ChartsAreWrittenWithAndWithoutDrawablePoints) {
                std::exception);
 }
 
+// A log axis over a small range was labelled only where linear ticks fell
+// (0.02 ... 0.06 for data spanning 0.02 to 0.06, nothing for 0.01 to 0.5
+// but its ends): the decades and their 2 and 5 now, every mantissa inside
+// a decade, decades alone over many.
+TEST(ChartTest, LogAxesLabelDecadesAndTwoFiveTicks) {
+  auto near = [](const std::vector<double>& got,
+                 const std::vector<double>& want) {
+    if (got.size() != want.size()) return false;
+    for (size_t i = 0; i < got.size(); ++i) {
+      if (std::abs(got[i] - want[i]) > 1e-9 * want[i]) return false;
+    }
+    return true;
+  };
+  const std::vector<double> wide = AxisTicks(2e-5, 3.0, true);
+  EXPECT_TRUE(near(wide, {1e-4, 1e-3, 1e-2, 1e-1, 1})) << wide.size();
+  const std::vector<double> two = AxisTicks(0.008, 0.6, true);
+  EXPECT_TRUE(near(two, {0.01, 0.02, 0.05, 0.1, 0.2, 0.5})) << two.size();
+  const std::vector<double> one = AxisTicks(0.018, 0.065, true);
+  EXPECT_TRUE(near(one, {0.02, 0.03, 0.04, 0.05, 0.06})) << one.size();
+  const std::vector<double> linear = AxisTicks(0.0, 0.95, false);
+  EXPECT_TRUE(near(linear, {0.0, 0.2, 0.4, 0.6, 0.8})) << linear.size();
+  // Twenty decades: at most a dozen labels, still decades.
+  const std::vector<double> many = AxisTicks(1e-12, 1e8, true);
+  EXPECT_LE(many.size(), 12u);
+  EXPECT_GE(many.size(), 5u);
+  for (double t : many) {
+    EXPECT_NEAR(std::log10(t), std::round(std::log10(t)), 1e-9);
+  }
+}
+
 // The PNG's width from its IHDR chunk (bytes 16-19, big-endian).
 int PngWidth(const std::string& path) {
   const std::string bytes = ReadFileToString(path);
