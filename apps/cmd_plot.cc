@@ -27,9 +27,9 @@ bool EndsWith(const std::string& s, const std::string& end) {
 }  // namespace
 
 void AddPlotOptions(CommandArgs* args) {
-  args->Option("params", "P.json", "parameter file (SPEC §4)");
+  args->Option("params", "P.json", "parameter file (docs/formats.md)");
   args->Option("preset", "NAME", "a preset instead of --params");
-  args->Option("data", "T.csv", "measurement table (SPEC §2)");
+  args->Option("data", "T.csv", "measurement table (docs/formats.md)");
   args->Option("incidence-deg", "LIST",
                "incidence angles of the polar panels, comma-separated",
                "0,30,60");
@@ -174,7 +174,7 @@ int RunPlot(int argc, char** argv) {
     std::printf("wrote %s\n", path.c_str());
   }
   PrintNotes(written.notes);
-  // SPEC §3.4: the tool says where the slab model is inexact.
+  // docs/models.md: the tool says where the slab model is inexact.
   if (const auto* slab = std::get_if<SlabParams>(&model.params)) {
     NoteSlabRegime(*slab);
   }

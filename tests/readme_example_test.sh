@@ -13,8 +13,8 @@ script=$(awk '/<!-- first-example -->/{on=1; next} /<!-- \/first-example -->/{on
 cd "$work"
 bash -euo pipefail -c "$script"
 # What the example says it makes.
-for f in satin.csv truth.json satin.fit.json satin.eval.csv satin.png \
-         satin.glb satin.glsl; do
+for f in satin.csv truth.json satin.fit.json satin.eval.csv \
+         figures/scatter.png figures/polar.png satin.html satin.glb satin.glsl; do
   [ -s "first/$f" ] || { echo "the example did not write $f" >&2; exit 1; }
 done
 echo "README example: every step exited 0 and wrote its file"
