@@ -292,7 +292,10 @@ std::vector<std::string> WriteStabilityReport(
     ScatterChart chart;
     chart.title = "success rate against " + knob;
     chart.x_label = knob + " (level index; labels in the table)";
-    chart.y_label = "success rate";
+    chart.y_label = "success rate (fraction of the runs)";
+    // A fraction: the whole of [0, 1], a little room above for the labels.
+    chart.y_min = 0.0;
+    chart.y_max = 1.08;
     std::map<std::string, size_t> series;
     md << "\n## " << knob << "\n\n![" << knob << "](stability_" << knob
        << ".png)\n\n| fitter | level | successes | median error |\n"
