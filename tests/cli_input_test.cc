@@ -114,6 +114,25 @@ TEST(CliInput, SpreadsheetTablesAreReadByTheCommands) {
   EXPECT_NE(text.find("\n45,90,20,-90,"), std::string::npos) << text;
 }
 
+TEST(CliInput, TheSummarySaysConvergedOrNotBeforeTheSolversWord) {
+  const fs::path dir = TestDir();
+  const std::string out = (dir / "fit.json").string();
+  // One iteration: the solver stops at its limit; the summary's verdict
+  // comes first, in words, and the solver's own term after it.
+  const RunResult r =
+      RunClothfit(dir, {"fit", "--model", "thread", "--data", kLinen.string(),
+                        "--fit-scale", "--max-iterations", "1", "--out", out});
+  EXPECT_EQ(r.status, 1) << Describe(r);
+  EXPECT_EQ(r.out.rfind("fit: not converged (the 'reason' line says why); "
+                        "solver: ",
+                        0),
+            0u)
+      << r.out;
+  EXPECT_EQ(r.out.find("usable, not converged"), std::string::npos);
+  EXPECT_NE(r.err.find("error: the fit did not converge: "), std::string::npos)
+      << r.err;
+}
+
 TEST(CliInput, HelpPrintsNumbersAsPeopleWriteThem) {
   const fs::path dir = TestDir();
   for (const char* command : {"fit", "synth", "eval", "export", "bench"}) {
