@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/commands.h"
+#include "apps/progress.h"
 #include "export/glsl.h"
 #include "export/gltf.h"
 #include "fitting/sheen_conversion.h"
@@ -99,11 +100,13 @@ int ExportGltfMap(const CommandArgs& args, int grid, const std::string& out) {
   absolute.kind = NoiseKind::kAbsolute;
   std::vector<SheenParams> fitted;
   int not_converged = 0;
+  progress::Task task("export", "texels");
   for (const LafortuneModel& texel : texels) {
     const SheenConversion c =
         ConvertToSheen(ReflectionGrid(texel, kPolar, kAzimuth), absolute);
     fitted.push_back(c.params);
     not_converged += c.report.converged ? 0 : 1;
+    task.Update(fitted.size(), texels.size());
   }
   std::vector<SheenParams> quantized;
   GltfMaterial material;
@@ -198,6 +201,7 @@ int RunExport(int argc, char** argv) {
     const MeasurementTable table = ReadDataOption(args);
     source = args.Get("data");
     source_model = "measured table";
+    const progress::Activity activity("export: fitting the sheen");
     conversion = ConvertToSheen(table, NoiseModel());
   } else {
     if (args.Has("params") &&
@@ -209,6 +213,7 @@ int RunExport(int argc, char** argv) {
     source_model = ModelName(file.params);
     NoiseModel absolute;
     absolute.kind = NoiseKind::kAbsolute;
+    const progress::Activity activity("export: fitting the sheen");
     conversion = ConvertToSheen(ReflectionGrid(file.params), absolute);
   }
   const SheenParams& s = conversion.params;

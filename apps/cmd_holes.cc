@@ -11,6 +11,7 @@
 
 #include "apps/commands.h"
 #include "apps/holes_options.h"
+#include "apps/progress.h"
 #include "bench/hole_charts.h"
 #include "data_synthetic/holes_truth.h"
 #include "data_synthetic/synthetic_table.h"
@@ -158,7 +159,10 @@ int RunAnalyze(int argc, char** argv) {
   const std::string out = args.Required("out");
   const auto t0 = std::chrono::steady_clock::now();
   const Mask mask = LoadMask(args);
-  const HoleTexture texture = AnalyzeMask(mask, args.Has("distances"));
+  const HoleTexture texture = [&] {
+    const progress::Activity activity("holes analyze: counting the mask");
+    return AnalyzeMask(mask, args.Has("distances"));
+  }();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
           .count();
@@ -335,6 +339,7 @@ int RunTruth(int argc, char** argv) {
               " views is more than 1e9 in all");
   }
   const Footprint tile = TileFootprint(mask, rays);
+  const progress::Activity activity("holes truth: tracing rays");
   FillTable(
       args, params,
       [&](const glm::dvec3& wo) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "apps/commands.h"
+#include "apps/progress.h"
 #include "holes/hole_texture.h"
 #include "io/atomic_file.h"
 #include "io/text_util.h"
@@ -187,8 +188,10 @@ int RunRender(int argc, char** argv) {
   CheckWritable(out);
   CheckWritable(png);
   std::vector<SlabParams> slabs;
-  const RenderedRow top =
-      RenderOption(args, "params", "preset", options, nullptr, &slabs);
+  const RenderedRow top = [&] {
+    const progress::Activity activity("render");
+    return RenderOption(args, "params", "preset", options, nullptr, &slabs);
+  }();
   PreviewImage image = top.image;
   // The EXR's header: what was rendered and how (docs/renderer.md).
   std::vector<ExrAttribute> header = {
@@ -198,8 +201,11 @@ int RunRender(int argc, char** argv) {
       {"clothfit:params", top.params},
       {"clothfit:rows", image.row_titles[0]}};
   if (args.Has("compare") || args.Has("compare-preset")) {
-    const RenderedRow compare = RenderOption(args, "compare", "compare-preset",
-                                             options, "compare", &slabs);
+    const RenderedRow compare = [&] {
+      const progress::Activity activity("render: the comparison");
+      return RenderOption(args, "compare", "compare-preset", options, "compare",
+                          &slabs);
+    }();
     image = StackRows(image, compare.image);
     header.push_back({"clothfit:compare_model", compare.model});
     header.push_back({"clothfit:compare_params", compare.params});

@@ -7,6 +7,7 @@
 
 #include "apps/commands.h"
 #include "apps/full_binary.h"
+#include "apps/progress.h"
 #include "bench/slab_error_chart.h"
 #include "data_synthetic/slab_monte_carlo.h"
 #include "data_synthetic/synthetic_table.h"
@@ -200,7 +201,10 @@ int RunSynthSlab(int argc, char** argv) {
     options.seed = static_cast<uint64_t>(seed);
     options.max_order = args.Has("single-scatter") ? 1 : 0;
     options.threads = ThreadsOption(args);
-    const SlabMonteCarloResult result = RunSlabMonteCarlo(options);
+    const SlabMonteCarloResult result = [&] {
+      const progress::Activity activity("synth: Monte Carlo");
+      return RunSlabMonteCarlo(options);
+    }();
     bsdf = SlabMonteCarloBsdfTable(result, quantity);
     direct = SlabMonteCarloTransmittanceTable(result);
     std::cout << "Monte Carlo: " << options.photons << " photons x "

@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "io/text_util.h"
@@ -95,6 +98,42 @@ void Task::Say(const std::string& text) {
   const double elapsed =
       std::chrono::duration<double>(last_draw_ - start_).count();
   Draw(what_ + ": " + text + " (" + Duration(elapsed) + ")");
+}
+
+struct Activity::State {
+  std::mutex mutex;
+  std::condition_variable stop;
+  bool stopping = false;
+  std::thread thread;
+};
+
+Activity::Activity(std::string what) : state_(nullptr) {
+  if (!Enabled()) return;
+  FlushWarnings();
+  state_ = new State;
+  state_->thread = std::thread([state = state_, what = std::move(what)] {
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_lock<std::mutex> lock(state->mutex);
+    while (!state->stop.wait_for(lock, std::chrono::milliseconds(250),
+                                 [state] { return state->stopping; })) {
+      const double elapsed = std::chrono::duration<double>(
+                                 std::chrono::steady_clock::now() - start)
+                                 .count();
+      if (elapsed >= 0.5) Draw(what + " (" + Duration(elapsed) + ")");
+    }
+  });
+}
+
+Activity::~Activity() {
+  if (state_ == nullptr) return;
+  {
+    std::lock_guard<std::mutex> lock(state_->mutex);
+    state_->stopping = true;
+  }
+  state_->stop.notify_one();
+  state_->thread.join();
+  delete state_;
+  Clear();
 }
 
 void Clear() {

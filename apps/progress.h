@@ -47,6 +47,22 @@ class Task {
   bool drawn_ = false;
 };
 
+// Work whose length is not known in advance (one library call): while it
+// lives, a thread redraws "WHAT (E s)" every quarter second once half a
+// second has passed; the line goes when it is destroyed. Nothing else may
+// print meanwhile.
+class Activity {
+ public:
+  explicit Activity(std::string what);
+  ~Activity();
+  Activity(const Activity&) = delete;
+  Activity& operator=(const Activity&) = delete;
+
+ private:
+  struct State;
+  State* state_;
+};
+
 // Erases the progress line, if one is shown.
 void Clear();
 

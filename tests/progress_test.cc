@@ -75,6 +75,11 @@ TEST(ProgressCli, LongWorkShowsProgressOnATerminalOnly) {
   const std::string silent = OnTerminal(dir, quiet);
   EXPECT_EQ(silent.find("synth: ["), std::string::npos) << silent;
   EXPECT_EQ(silent.find('\r'), std::string::npos) << silent;
+  // Work of unknown length (one Monte Carlo run): its elapsed time.
+  const std::string mc = OnTerminal(
+      dir, {"synth", "--model", "slab", "--tau", "0.5", "--albedo", "0.8",
+            "--mc", "--photons", "600000", "--out", (dir / "mc.csv").string()});
+  EXPECT_NE(mc.find("synth: Monte Carlo ("), std::string::npos) << mc;
   // Into a file: nothing drawn either.
   const RunResult piped = RunClothfit(dir, synth);
   ASSERT_EQ(piped.status, 0) << Describe(piped);
