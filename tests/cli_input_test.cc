@@ -131,6 +131,15 @@ TEST(CliInput, TheSummarySaysConvergedOrNotBeforeTheSolversWord) {
   EXPECT_EQ(r.out.find("usable, not converged"), std::string::npos);
   EXPECT_NE(r.err.find("error: the fit did not converge: "), std::string::npos)
       << r.err;
+  // Two lobes without a lookup table are not "one lobe".
+  const RunResult lobes =
+      RunClothfit(dir, {"fit", "--model", "lafortune", "--lobes", "2",
+                        "--no-lut", "--data", kLinen.string(), "--out", out});
+  EXPECT_EQ(lobes.status, 0) << Describe(lobes);
+  EXPECT_NE(lobes.out.find("no lookup table: the lobes in one solve"),
+            std::string::npos)
+      << lobes.out;
+  EXPECT_EQ(lobes.out.find("one lobe"), std::string::npos) << lobes.out;
 }
 
 TEST(CliInput, HelpPrintsNumbersAsPeopleWriteThem) {
