@@ -68,12 +68,12 @@ Task::Task(std::string what, std::string unit)
       unit_(std::move(unit)),
       start_(std::chrono::steady_clock::now()) {}
 
-bool Task::Due(bool last) {
+bool Task::Due() {
   if (!Enabled()) return false;
   const auto now = std::chrono::steady_clock::now();
   // Work shorter than half a second draws nothing (no flicker).
   if (now - start_ < std::chrono::milliseconds(500)) return false;
-  if (!last && drawn_ && now - last_draw_ < std::chrono::milliseconds(100)) {
+  if (drawn_ && now - last_draw_ < std::chrono::milliseconds(100)) {
     return false;
   }
   if (!drawn_) FlushWarnings();  // the input's warnings before the work
@@ -87,14 +87,14 @@ void Task::Update(double done, double total) {
     if (drawn_) Clear();
     return;
   }
-  if (!Due(false)) return;
+  if (!Due()) return;
   const double elapsed =
       std::chrono::duration<double>(last_draw_ - start_).count();
   Draw(Line(what_, done, total, unit_, elapsed));
 }
 
 void Task::Say(const std::string& text) {
-  if (!Due(false)) return;
+  if (!Due()) return;
   const double elapsed =
       std::chrono::duration<double>(last_draw_ - start_).count();
   Draw(what_ + ": " + text + " (" + Duration(elapsed) + ")");

@@ -41,7 +41,7 @@ class Task {
   void Say(const std::string& text);
 
  private:
-  bool Due(bool last);
+  bool Due();
   std::string what_, unit_;
   std::chrono::steady_clock::time_point start_, last_draw_;
   bool drawn_ = false;
