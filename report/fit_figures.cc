@@ -21,13 +21,15 @@ ChartPoint Point(double x, double y) {
   return p;
 }
 
-// atan2 rather than acos: accurate near 0 and pi as well.
-double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+// The angle between two directions (models/math.h: accurate near 0 and pi).
+double DirectionAngle(const glm::dvec3& a, const glm::dvec3& b) {
+  return AngleBetween(a, b, glm::length(a) * glm::length(b));
 }
 
 double PolarAngle(const glm::dvec3& w) {
-  return std::atan2(std::hypot(w.x, w.y), w.z);
+  double theta = 0.0, phi = 0.0;
+  AnglesFromDirection(w, &theta, &phi);
+  return theta;
 }
 
 // " [1/sr]" for the BRDF and rho (both per steradian).
@@ -140,7 +142,7 @@ bool FigureNeedsData(const std::string& name) {
 }
 
 double PhaseAngle(const glm::dvec3& wi, const glm::dvec3& wo) {
-  return AngleBetween(wi, wo);
+  return DirectionAngle(wi, wo);
 }
 
 HalfDiff ToHalfDiff(const glm::dvec3& wi, const glm::dvec3& wo) {
@@ -209,7 +211,7 @@ std::vector<PolarPanel> PolarPanels(const ModelParams& model,
     }
     for (size_t r = 0; r < table.rows.size(); ++r) {
       const TableRow& row = table.rows[r];
-      if (!(row.wo.z > 0.0) || AngleBetween(row.wi, wi) > window) continue;
+      if (!(row.wo.z > 0.0) || DirectionAngle(row.wi, wi) > window) continue;
       const double off_plane =
           std::asin(std::clamp(glm::dot(row.wo, across), -1.0, 1.0));
       if (std::abs(off_plane) > window) continue;
