@@ -4,10 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/atomic_file.h"
+#include "charts/draw_internal.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
 
@@ -37,13 +36,6 @@ double Position(const HeatMap& map, double lo, double hi, double value) {
   }
   if (!(hi > lo)) return 0.5;
   return std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
-}
-
-// The viridis colour (BGR) at position t in [0, 1].
-cv::Scalar Colour(const cv::Mat& lut, double t) {
-  const cv::Vec3b c =
-      lut.at<cv::Vec3b>(0, static_cast<int>(std::lround(t * 255)));
-  return cv::Scalar(c[0], c[1], c[2]);
 }
 
 // Text centred on (x, y) in ink or paper, whichever reads better on `under`.
@@ -103,11 +95,6 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
   }
   double lo = 0.0, hi = 1.0;
   ColourRange(map, &lo, &hi);
-  cv::Mat gradient(1, 256, CV_8UC1);
-  for (int i = 0; i < 256; ++i)
-    gradient.at<uchar>(0, i) = static_cast<uchar>(i);
-  cv::Mat lut;
-  cv::applyColorMap(gradient, lut, cv::COLORMAP_VIRIDIS);
 
   const int n = static_cast<int>(map.panels.size());
   const int panel_w = cols * kCellWidth;
@@ -138,7 +125,9 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
         const cv::Rect cell(x0 + c * kCellWidth, kTop + r * kCellHeight,
                             kCellWidth, kCellHeight);
         const cv::Scalar fill =
-            std::isfinite(v) ? Colour(lut, Position(map, lo, hi, v)) : kMissing;
+            std::isfinite(v)
+                ? chart_internal::ViridisColour(Position(map, lo, hi, v))
+                : kMissing;
         cv::rectangle(img, cell, fill, cv::FILLED);
         cv::rectangle(img, cell, kPaper, 1);
         if (map.outline_above && std::isfinite(v) && v > map.threshold) {
@@ -176,7 +165,7 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
   for (int y = 0; y < bar_h; ++y) {
     const double t = 1.0 - static_cast<double>(y) / std::max(1, bar_h - 1);
     cv::line(img, cv::Point(bar_x, kTop + y), cv::Point(bar_x + 20, kTop + y),
-             Colour(lut, t));
+             chart_internal::ViridisColour(t));
   }
   for (int k = 0; k <= 4; ++k) {
     const double t = k / 4.0;
@@ -193,11 +182,7 @@ void WriteHeatMapPng(const HeatMap& map, const std::string& path) {
   cv::putText(img, map.legend, cv::Point(bar_x - 10, kTop - 10), kFont, 0.4,
               kInk, 1, cv::LINE_AA);
 
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", img, png)) {
-    throw InputError(path + ": cannot encode the chart as PNG");
-  }
-  WriteFileAtomically(path, std::string(png.begin(), png.end()));
+  chart_internal::WritePng(img, path);
 }
 
 }  // namespace clothfit
