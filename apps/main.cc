@@ -55,6 +55,8 @@ const Command kCommands[] = {
     {"fit", clothfit::RunFit, "fit a model to a measurement table"},
     {"holes", CLOTHFIT_IMAGES(clothfit::RunHoles),
      "semi-transparent textures with thickness (analyze|eval|truth)"},
+    {"merge", CLOTHFIT_IMAGES(clothfit::RunMerge),
+     "merge the parts of a texel map fitted in blocks (fit --region)"},
     {"plot", CLOTHFIT_IMAGES(clothfit::RunPlot),
      "figures of a model against a table (scatter, residuals, polar, ...)"},
     {"preset", clothfit::RunPreset, "print a preset fabric's parameter file"},
