@@ -2,6 +2,7 @@
 // as one map, the levels above the blocks fitted from their children and
 // the stack's rows (docs/scale.md).
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -44,6 +45,33 @@ std::vector<std::string> PartPaths(const CommandArgs& args) {
 }
 
 }  // namespace
+
+int RunBlocks(int argc, char** argv) {
+  CommandArgs args(
+      "blocks", "clothfit blocks --stack M.csv --block B",
+      "Prints the blocks of B x B texels that tile an image stack's texture, "
+      "one X0,Y0,W,H per line: the --region of each part\nof a fit in "
+      "blocks (a task of scripts/dask_fit.py, an index of a Slurm job array; "
+      "docs/scale.md).");
+  args.Option("stack", "M.csv", "the image-stack manifest");
+  args.Option("block", "B", "block side in texels, a power of two", "64");
+  if (!args.Parse(argc, argv, 2)) return 0;
+  const long block = args.GetInt("block");
+  if (block < 1 || block > (1 << 28)) {
+    args.Fail("option '--block': must be a power of two >= 1");
+  }
+  const ImageStackReader reader(args.Required("stack"));
+  const int b = static_cast<int>(block);
+  const std::string problem =
+      LafortuneRegionProblem(0, 0, b, b, reader.width(), reader.height());
+  if (!problem.empty()) args.Fail("option '--block': " + problem);
+  for (int y = 0; y < reader.height(); y += b) {
+    for (int x = 0; x < reader.width(); x += b) {
+      std::printf("%d,%d,%d,%d\n", x, y, b, b);
+    }
+  }
+  return 0;
+}
 
 int RunMerge(int argc, char** argv) {
   CommandArgs args(

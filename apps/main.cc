@@ -49,6 +49,8 @@ int RunFull(int, char**) { clothfit::RunInFullBinary(); }
 const Command kCommands[] = {
     {"bench", CLOTHFIT_IMAGES(clothfit::RunBench),
      "speed against accuracy of every fitter"},
+    {"blocks", CLOTHFIT_IMAGES(clothfit::RunBlocks),
+     "the blocks of an image stack's texture (fit --region, docs/scale.md)"},
     {"eval", clothfit::RunEval, "evaluate a parameter file at directions"},
     {"export", clothfit::RunExport,
      "a fitted model as a glTF 2.0 cloth (KHR_materials_sheen)"},
