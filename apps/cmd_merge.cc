@@ -100,11 +100,6 @@ int RunMerge(int argc, char** argv) {
   }
   CheckWritable(out_path);
   const std::vector<std::string> paths = PartPaths(args);
-  std::vector<NamedFile> inputs;
-  for (const std::string& path : paths) inputs.push_back({"--parts", path});
-  CheckOutputsDistinct(
-      {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
-      inputs);
   std::vector<LafortunePart> parts;
   for (const std::string& path : paths) {
     parts.push_back(ReadLafortunePart(path));
@@ -144,6 +139,18 @@ int RunMerge(int argc, char** argv) {
                      std::to_string(info.texture_width) + " x " +
                      std::to_string(info.texture_height));
   }
+  // Neither a part nor an image of the stack is overwritten.
+  std::vector<NamedFile> inputs;
+  for (const std::string& path : paths) inputs.push_back({"--parts", path});
+  for (size_t k = 0; k < reader.images(); ++k) {
+    inputs.push_back({"an image of the stack", reader.ImagePath(k)});
+  }
+  if (!reader.NormalMapPath().empty()) {
+    inputs.push_back({"the stack's normal map", reader.NormalMapPath()});
+  }
+  CheckOutputsDistinct(
+      {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
+      inputs);
   const int width = reader.width(), height = reader.height();
   const int strip = static_cast<int>(
       std::max<size_t>(1, kStripRows / static_cast<size_t>(width)));

@@ -138,16 +138,8 @@ void FitLafortuneUpperLevels(const MeasurementTable& directions, int width,
     out.samples = rows;
     const size_t groups = level.collectors.size();
     out.texels.resize(groups);
-    std::vector<std::vector<const LafortuneModel*>> children(groups);
-    const LafortuneLevel& below = result->levels[l - 1];
-    for (int y = 0; y < below.height; ++y) {
-      for (int x = 0; x < below.width; ++x) {
-        children[static_cast<size_t>(MipParent(y, level.height)) * level.width +
-                 MipParent(x, level.width)]
-            .push_back(
-                &below.texels[static_cast<size_t>(y) * below.width + x].params);
-      }
-    }
+    const std::vector<std::vector<const LafortuneModel*>> children =
+        LafortuneChildren(result->levels[l - 1], level.width, level.height);
     RunTexelJobs(groups, options.threads, [&](size_t g) {
       int skipped = 0;
       const TexelSamples samples = level.collectors[g].Finish(&skipped);

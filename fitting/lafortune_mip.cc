@@ -160,6 +160,21 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   return fit;
 }
 
+std::vector<std::vector<const LafortuneModel*>> LafortuneChildren(
+    const LafortuneLevel& below, int width, int height) {
+  std::vector<std::vector<const LafortuneModel*>> children(
+      static_cast<size_t>(width) * height);
+  for (int y = 0; y < below.height; ++y) {
+    for (int x = 0; x < below.width; ++x) {
+      children[static_cast<size_t>(MipParent(y, height)) * width +
+               MipParent(x, width)]
+          .push_back(
+              &below.texels[static_cast<size_t>(y) * below.width + x].params);
+    }
+  }
+  return children;
+}
+
 void RunTexelJobs(size_t jobs, int threads,
                   const std::function<void(size_t)>& job,
                   const std::function<void()>& done) {
@@ -338,18 +353,11 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     if (l > 0) group_rows(l - 1);
     // The children of each texel of level l (level l - 1's texels in its
     // group).
-    std::vector<std::vector<const LafortuneModel*>> children(texel_rows.size());
-    if (l > 0) {
-      const LafortuneLevel& below = out.levels[l - 1];
-      const int w2 = out.levels[l].width, h2 = out.levels[l].height;
-      for (int y = 0; y < below.height; ++y) {
-        for (int x = 0; x < below.width; ++x) {
-          const int x2 = MipParent(x, w2), y2 = MipParent(y, h2);
-          children[y2 * w2 + x2].push_back(
-              &below.texels[y * below.width + x].params);
-        }
-      }
-    }
+    const std::vector<std::vector<const LafortuneModel*>> children =
+        l > 0 ? LafortuneChildren(out.levels[l - 1], out.levels[l].width,
+                                  out.levels[l].height)
+              : std::vector<std::vector<const LafortuneModel*>>(
+                    texel_rows.size());
     RunTexelJobs(
         texel_rows.size(), options.threads,
         [&](size_t t) {

@@ -88,6 +88,12 @@ class LafortuneCandidates {
   LafortuneFitResult best_;
 };
 
+// The models of the texels of `below` in each group of the next level
+// (width x height texels; MipParent), in row order: the starts of the
+// groups' fits.
+std::vector<std::vector<const LafortuneModel*>> LafortuneChildren(
+    const LafortuneLevel& below, int width, int height);
+
 // Runs job(0) .. job(jobs - 1) on `threads` threads (0: every core), and
 // done() after each, one thread at a time; rethrows the first exception
 // once all have run.

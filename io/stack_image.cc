@@ -55,20 +55,21 @@ bool ReadRegion(OIIO::ImageInput* in, const PixelRegion& r, int channels,
     }
     return true;
   }
-  // Scanlines: whole rows, the region's columns kept.
+  // Scanlines: the region's rows, whole, in one read; its columns kept.
   if (r.x == 0 && r.width == spec.width) {
     return in->read_scanlines(0, 0, spec.y + r.y, spec.y + r.y + r.height,
                               spec.z, 0, channels, OIIO::TypeDesc::FLOAT,
                               pixels->data());
   }
-  std::vector<float> rows(static_cast<size_t>(spec.width) * channels);
+  std::vector<float> rows(static_cast<size_t>(spec.width) * r.height *
+                          channels);
+  if (!in->read_scanlines(0, 0, spec.y + r.y, spec.y + r.y + r.height, spec.z,
+                          0, channels, OIIO::TypeDesc::FLOAT, rows.data())) {
+    return false;
+  }
   for (int y = 0; y < r.height; ++y) {
-    if (!in->read_scanlines(0, 0, spec.y + r.y + y, spec.y + r.y + y + 1,
-                            spec.z, 0, channels, OIIO::TypeDesc::FLOAT,
-                            rows.data())) {
-      return false;
-    }
-    const float* from = rows.data() + static_cast<size_t>(r.x) * channels;
+    const float* from =
+        rows.data() + (static_cast<size_t>(y) * spec.width + r.x) * channels;
     std::copy(from, from + row_floats, pixels->data() + y * row_floats);
   }
   return true;
