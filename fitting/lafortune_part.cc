@@ -203,16 +203,18 @@ LafortunePart ReadLafortunePart(const std::string& path) {
     if (lobes_channel == part.map.channels.end()) {
       throw InputError(path + ": no channel 'lobes'");
     }
-    const std::vector<std::vector<float>>* lobes = nullptr;
     for (size_t l = 0; l < levels; ++l) {
       LafortuneLevel level;
       level.width = part.map.levels[l].width;
       level.height = part.map.levels[l].height;
       level.texels.resize(static_cast<size_t>(level.width) * level.height);
-      lobes = &part.map.levels[l].data;
       const std::vector<float>& count =
-          (*lobes)[lobes_channel - part.map.channels.begin()];
+          part.map.levels[l].data[lobes_channel - part.map.channels.begin()];
       for (size_t i = 0; i < level.texels.size(); ++i) {
+        if (!(count[i] >= 0.0f && count[i] <= 3.0f)) {
+          throw InputError(path + ": channel 'lobes' of level " +
+                           std::to_string(l) + ": not a lobe count (0 to 3)");
+        }
         level.texels[i].params.params.lobes.resize(
             static_cast<size_t>(count[i]));
       }
