@@ -20,6 +20,8 @@ int RunBench(int argc, char** argv);
 int RunEval(int argc, char** argv);
 int RunFit(int argc, char** argv);
 int RunFitLafortune(int argc, char** argv);  // fit --model lafortune
+int RunMerge(int argc, char** argv);         // merge: parts of a texel map
+int RunBlocks(int argc, char** argv);        // blocks: the parts' regions
 int RunExport(int argc, char** argv);        // export --format gltf
 int RunFitHoles(int argc, char** argv);      // fit --model holes
 int RunHoles(int argc, char** argv);         // holes analyze|eval|truth

@@ -24,6 +24,36 @@ Weighting LafortuneWeighting(const MeasurementTable& table,
   return Weighting(table, n);
 }
 
+std::vector<int> LafortuneCandidateLobes(const LafortuneMipOptions& options) {
+  if (options.tolerance > 0.0) return {0, 1, 2, 3};
+  return {options.fit.lobes};
+}
+
+LafortuneFitResult FitLafortuneCandidate(const TexelSamples& samples, int lobes,
+                                         int skipped,
+                                         const LafortuneMipOptions& options) {
+  LafortuneFitOptions o = options.fit;
+  o.lobes = lobes;
+  LafortuneFitResult fit = FitLafortune(samples, o);
+  fit.report.rows_not_used = skipped;
+  return fit;
+}
+
+bool LafortuneCandidates::Offer(LafortuneFitResult fit) {
+  const bool better = !best_.report.usable ||
+                      (fit.report.usable &&
+                       fit.report.relative_rms < best_.report.relative_rms);
+  const bool first = !offered_;
+  offered_ = true;
+  if (tolerance_ > 0.0 && fit.report.usable &&
+      fit.report.relative_rms <= tolerance_) {
+    best_ = std::move(fit);  // the smallest K that meets the tolerance
+    return true;
+  }
+  if (first || better) best_ = std::move(fit);
+  return false;
+}
+
 namespace {
 
 // FitTexelRows on the rows' samples (CollectSamples; `skipped` rows left
@@ -33,28 +63,16 @@ LafortuneFitResult FitTexelSamples(const TexelSamples& samples, int skipped,
                                    const ViewIndex& views,
                                    const std::vector<size_t>& rows,
                                    const LafortuneMipOptions& options) {
-  LafortuneFitResult best;
-  std::vector<int> counts = {options.fit.lobes};
-  if (options.tolerance > 0.0) counts = {0, 1, 2, 3};
-  for (int k : counts) {
-    LafortuneFitOptions o = options.fit;
-    o.lobes = k;
-    LafortuneFitResult fit = FitLafortune(samples, o);
+  LafortuneCandidates candidates(options.tolerance);
+  for (int k : LafortuneCandidateLobes(options)) {
+    LafortuneFitResult fit =
+        FitLafortuneCandidate(samples, k, skipped, options);
     // Errors over the rows, not the merged samples.
-    fit.report.rows_not_used = skipped;
     LafortuneErrors(fit.params, table, views, rows, &fit.report.rms,
                     &fit.report.relative_rms, &fit.report.view_relative_rms);
-    const bool better = !best.report.usable ||
-                        (fit.report.usable &&
-                         fit.report.relative_rms < best.report.relative_rms);
-    if (k == counts.front() || better) best = fit;
-    if (options.tolerance > 0.0 && fit.report.usable &&
-        fit.report.relative_rms <= options.tolerance) {
-      best = fit;  // the smallest K that meets the tolerance
-      break;
-    }
+    if (candidates.Offer(std::move(fit))) break;
   }
-  return best;
+  return candidates.Take();
 }
 
 }  // namespace
@@ -140,6 +158,52 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
                           QuantityName(table.quantity) +
                           "), over merged samples";
   return fit;
+}
+
+std::vector<std::vector<const LafortuneModel*>> LafortuneChildren(
+    const LafortuneLevel& below, int width, int height) {
+  std::vector<std::vector<const LafortuneModel*>> children(
+      static_cast<size_t>(width) * height);
+  for (int y = 0; y < below.height; ++y) {
+    for (int x = 0; x < below.width; ++x) {
+      children[static_cast<size_t>(MipParent(y, height)) * width +
+               MipParent(x, width)]
+          .push_back(
+              &below.texels[static_cast<size_t>(y) * below.width + x].params);
+    }
+  }
+  return children;
+}
+
+void RunTexelJobs(size_t jobs, int threads,
+                  const std::function<void(size_t)>& job,
+                  const std::function<void()>& done) {
+  if (threads <= 0) {
+    threads = static_cast<int>(std::thread::hardware_concurrency());
+  }
+  threads = std::clamp(threads, 1, 256);
+  std::mutex mutex;
+  std::exception_ptr error;
+  std::atomic<size_t> next_job{0};
+  auto worker = [&]() {
+    for (size_t t = next_job++; t < jobs; t = next_job++) {
+      try {
+        job(t);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!error) error = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mutex);
+      if (done) done();
+    }
+  };
+  const int pool_threads =
+      static_cast<int>(std::min<size_t>(threads, std::max<size_t>(jobs, 1)));
+  std::vector<std::thread> pool;
+  for (int i = 1; i < pool_threads; ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
 }
 
 LafortuneMipSummary SummarizeLafortuneMip(const LafortuneMipResult& result) {
@@ -283,60 +347,35 @@ LafortuneMipResult FitLafortuneMip(const MeasurementTable& table,
     all_jobs += level.texels.size();
     out.levels.push_back(std::move(level));
   }
-  int threads = options.threads > 0
-                    ? options.threads
-                    : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, 256);
-  std::mutex progress_mutex;
   int done = 0;
-  std::exception_ptr error;
-  for (size_t l = 0; l < sizes.size() && !error; ++l) {
+  for (size_t l = 0; l < sizes.size(); ++l) {
     const auto level_t0 = std::chrono::steady_clock::now();
     if (l > 0) group_rows(l - 1);
     // The children of each texel of level l (level l - 1's texels in its
     // group).
-    std::vector<std::vector<const LafortuneModel*>> children(texel_rows.size());
-    if (l > 0) {
-      const LafortuneLevel& below = out.levels[l - 1];
-      const int w2 = out.levels[l].width, h2 = out.levels[l].height;
-      for (int y = 0; y < below.height; ++y) {
-        for (int x = 0; x < below.width; ++x) {
-          const int x2 = MipParent(x, w2), y2 = MipParent(y, h2);
-          children[y2 * w2 + x2].push_back(
-              &below.texels[y * below.width + x].params);
-        }
-      }
-    }
-    std::atomic<size_t> next_job{0};
-    auto worker = [&]() {
-      for (size_t t = next_job++; t < texel_rows.size(); t = next_job++) {
-        try {
+    const std::vector<std::vector<const LafortuneModel*>> children =
+        l > 0 ? LafortuneChildren(out.levels[l - 1], out.levels[l].width,
+                                  out.levels[l].height)
+              : std::vector<std::vector<const LafortuneModel*>>(
+                    texel_rows.size());
+    RunTexelJobs(
+        texel_rows.size(), options.threads,
+        [&](size_t t) {
           LafortuneMipOptions texel_options = options;
           texel_options.fit.warm_starts = children[t];
           out.levels[l].texels[t] = FitTexelRows(table, weighting, views,
                                                  texel_rows[t], texel_options);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(progress_mutex);
-          if (!error) error = std::current_exception();
-        }
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        ++done;
-        if (options.progress) {
-          options.progress(done, static_cast<int>(all_jobs));
-        }
-      }
-    };
-    const int level_threads =
-        std::min(threads, static_cast<int>(texel_rows.size()));
-    std::vector<std::thread> pool;
-    for (int i = 1; i < level_threads; ++i) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+        },
+        [&] {
+          ++done;
+          if (options.progress) {
+            options.progress(done, static_cast<int>(all_jobs));
+          }
+        });
     out.levels[l].seconds = std::chrono::duration<double>(
                                 std::chrono::steady_clock::now() - level_t0)
                                 .count();
   }
-  if (error) std::rethrow_exception(error);
   out.fits = static_cast<int>(all_jobs);
   out.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

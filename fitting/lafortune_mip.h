@@ -8,9 +8,11 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fitting/lafortune_fit.h"
+#include "fitting/lafortune_samples.h"
 #include "io/lafortune_mipmap.h"
 
 namespace clothfit {
@@ -63,6 +65,41 @@ LafortuneFitResult FitTexelRows(const MeasurementTable& table,
                                 const ViewIndex& views,
                                 const std::vector<size_t>& rows,
                                 const LafortuneMipOptions& options);
+
+// The steps of FitTexelRows, for fits whose rows are not in one table
+// (fitting/lafortune_merge.h): the lobe counts it tries, in order; the fit
+// of one count on collected samples (`skipped` rows not reflection); and the
+// choice among the fits, offered in that order with their errors over the
+// rows set: Offer returns true when the choice is made (the tolerance met),
+// Take gives the chosen fit.
+std::vector<int> LafortuneCandidateLobes(const LafortuneMipOptions& options);
+LafortuneFitResult FitLafortuneCandidate(const TexelSamples& samples, int lobes,
+                                         int skipped,
+                                         const LafortuneMipOptions& options);
+class LafortuneCandidates {
+ public:
+  explicit LafortuneCandidates(double tolerance) : tolerance_(tolerance) {}
+  bool Offer(LafortuneFitResult fit);
+  LafortuneFitResult Take() { return std::move(best_); }
+
+ private:
+  double tolerance_;
+  bool offered_ = false;
+  LafortuneFitResult best_;
+};
+
+// The models of the texels of `below` in each group of the next level
+// (width x height texels; MipParent), in row order: the starts of the
+// groups' fits.
+std::vector<std::vector<const LafortuneModel*>> LafortuneChildren(
+    const LafortuneLevel& below, int width, int height);
+
+// Runs job(0) .. job(jobs - 1) on `threads` threads (0: every core), and
+// done() after each, one thread at a time; rethrows the first exception
+// once all have run.
+void RunTexelJobs(size_t jobs, int threads,
+                  const std::function<void(size_t)>& job,
+                  const std::function<void()>& done = {});
 
 // One model for a whole table (its s,t columns, if any, ignored): the fit
 // of every row as FitTexelRows, the rows that are not reflection left out

@@ -50,62 +50,64 @@ ViewIndex::ViewIndex(const MeasurementTable& table) {
   }
 }
 
-TexelSamples CollectSamples(const MeasurementTable& table,
-                            const Weighting& weighting, const ViewIndex& views,
-                            const std::vector<size_t>& rows, int* skipped) {
+SampleCollector::SampleCollector(const MeasurementTable& table,
+                                 const ViewIndex& views)
+    : quantity_(table.quantity),
+      has_normal_(table.has_normal),
+      alpha_sum_(views.views().size(), 0.0),
+      alpha_count_(views.views().size(), 0),
+      slot_(views.pairs(), -1) {
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError(
         "a Lafortune model predicts reflection (brdf or "
         "cosine_weighted), not transmittance");
   }
-  TexelSamples s;
-  s.views = views.views();
-  std::vector<double> alpha_sum(s.views.size(), 0.0);
-  std::vector<int> alpha_count(s.views.size(), 0);
-  std::vector<int> slot(views.pairs(), -1);  // pair -> sample
-  std::vector<glm::dvec3> sum_wy;            // per sample: sum w y
-  int dropped = 0;
-  for (size_t index : rows) {
-    const TableRow& row = table.rows[index];
-    if (!IsReflectionRow(row)) {
-      ++dropped;
-      continue;
-    }
-    // Values as rho; sigma likewise (rho = f wi.z).
-    const double to_rho = CosineWeightedFactor(table.quantity, row.wi.z);
-    const glm::dvec3 w = weighting.InverseVariance(row, to_rho);
-    const int view = views.RowView(index);
-    int& k = slot[views.RowPair(index)];
-    if (k < 0) {
-      k = static_cast<int>(s.l.size());
-      s.l.push_back(row.wi);
-      s.v.push_back(row.wo);
-      s.view.push_back(view);
-      s.weight.push_back(glm::dvec3(0.0));
-      s.value.push_back(glm::dvec3(0.0));
-      s.source_line.push_back(row.source_line);
-      sum_wy.push_back(glm::dvec3(0.0));
-    }
-    s.weight[k] += w;
-    sum_wy[k] += w * row.value * to_rho;
-    s.value[k] += row.value * to_rho;  // plain sum, for zero weights
-    const glm::dvec3 rho = row.value * to_rho;
-    s.largest_row_value = std::max({s.largest_row_value, rho.x, rho.y, rho.z});
-    s.count_rows.resize(s.l.size(), 0);
-    ++s.count_rows[k];
-    alpha_sum[view] += row.alpha;
-    ++alpha_count[view];
+  s_.views = views.views();
+}
+
+void SampleCollector::Add(const TableRow& row, int view, int pair,
+                          const Weighting& weighting) {
+  // A pooled group's normal: the average of its rows' (Section 5.1).
+  normal_sum_ += row.normal;
+  if (!IsReflectionRow(row)) {
+    ++dropped_;
+    return;
   }
+  // Values as rho; sigma likewise (rho = f wi.z).
+  const double to_rho = CosineWeightedFactor(quantity_, row.wi.z);
+  const glm::dvec3 w = weighting.InverseVariance(row, to_rho);
+  int& k = slot_[pair];
+  if (k < 0) {
+    k = static_cast<int>(s_.l.size());
+    s_.l.push_back(row.wi);
+    s_.v.push_back(row.wo);
+    s_.view.push_back(view);
+    s_.weight.push_back(glm::dvec3(0.0));
+    s_.value.push_back(glm::dvec3(0.0));
+    s_.source_line.push_back(row.source_line);
+    sum_wy_.push_back(glm::dvec3(0.0));
+  }
+  s_.weight[k] += w;
+  sum_wy_[k] += w * row.value * to_rho;
+  s_.value[k] += row.value * to_rho;  // plain sum, for zero weights
+  const glm::dvec3 rho = row.value * to_rho;
+  s_.largest_row_value = std::max({s_.largest_row_value, rho.x, rho.y, rho.z});
+  s_.count_rows.resize(s_.l.size(), 0);
+  ++s_.count_rows[k];
+  alpha_sum_[view] += row.alpha;
+  ++alpha_count_[view];
+}
+
+TexelSamples SampleCollector::Finish(int* skipped) {
+  TexelSamples s = std::move(s_);
   for (size_t k = 0; k < s.l.size(); ++k) {
     for (int c = 0; c < 3; ++c) {
-      s.value[k][c] = s.weight[k][c] > 0.0 ? sum_wy[k][c] / s.weight[k][c]
+      s.value[k][c] = s.weight[k][c] > 0.0 ? sum_wy_[k][c] / s.weight[k][c]
                                            : s.value[k][c] / s.count_rows[k];
     }
   }
-  if (table.has_normal) {
-    glm::dvec3 normal_sum(0.0);
-    for (size_t index : rows) normal_sum += table.rows[index].normal;
-    if (glm::length(normal_sum) > 0.0) s.normal = glm::normalize(normal_sum);
+  if (has_normal_) {
+    if (glm::length(normal_sum_) > 0.0) s.normal = glm::normalize(normal_sum_);
     const TexelFrame frame = MakeTexelFrame(s.normal);
     for (size_t k = 0; k < s.l.size(); ++k) {
       s.l[k] = ToTexelFrame(frame, s.l[k]);
@@ -114,61 +116,79 @@ TexelSamples CollectSamples(const MeasurementTable& table,
   }
   s.view_alpha.resize(s.views.size());
   for (size_t k = 0; k < s.views.size(); ++k) {
-    s.view_alpha[k] = alpha_count[k] ? alpha_sum[k] / alpha_count[k] : 1.0;
+    s.view_alpha[k] = alpha_count_[k] ? alpha_sum_[k] / alpha_count_[k] : 1.0;
   }
-  if (skipped) *skipped = dropped;
+  if (skipped) *skipped = dropped_;
   return s;
+}
+
+TexelSamples CollectSamples(const MeasurementTable& table,
+                            const Weighting& weighting, const ViewIndex& views,
+                            const std::vector<size_t>& rows, int* skipped) {
+  SampleCollector collector(table, views);
+  for (size_t index : rows) {
+    collector.Add(table.rows[index], views.RowView(index), views.RowPair(index),
+                  weighting);
+  }
+  return collector.Finish(skipped);
+}
+
+LafortuneErrorSums::LafortuneErrorSums(const LafortuneModel& model,
+                                       const MeasurementTable& table,
+                                       const ViewIndex& views)
+    : model_(model),
+      quantity_(table.quantity),
+      same_views_(model.lut.views.size() == views.views().size()),
+      frame_(MakeTexelFrame(model.normal)),
+      view_d_(views.views().size(), glm::dvec3(0.0)),
+      view_y_(views.views().size(), glm::dvec3(0.0)),
+      view_n_(views.views().size(), 0) {}
+
+void LafortuneErrorSums::Add(const TableRow& row, int view) {
+  if (!IsReflectionRow(row)) return;
+  // In the table's quantity, as every other fit reports (the model is
+  // rho, f = rho / wi.z).
+  const glm::dvec3& y = row.value;
+  const glm::dvec3 t = same_views_ ? model_.lut.color[view]
+                                   : LookupView(model_.lut, row.wo).color;
+  const glm::dvec3 d =
+      t *
+          LafortuneF1(model_.params, ToTexelFrame(frame_, row.wi),
+                      ToTexelFrame(frame_, row.wo)) *
+          QuantityFactor(Quantity::kCosineWeighted, quantity_, row.wi.z) -
+      y;
+  se_ += glm::dot(d, d);
+  ss_ += glm::dot(y, y);
+  ++n_;
+  view_d_[view] += d;
+  view_y_[view] += y;
+  ++view_n_[view];
+}
+
+void LafortuneErrorSums::Finish(double* rms, double* relative_rms,
+                                double* view_relative_rms) const {
+  *rms = n_ ? std::sqrt(se_ / (3.0 * n_)) : 0.0;
+  *relative_rms = ss_ > 0.0 ? std::sqrt(se_ / ss_) : 0.0;
+  if (view_relative_rms) {
+    double vse = 0.0, vss = 0.0;
+    for (size_t k = 0; k < view_n_.size(); ++k) {
+      if (view_n_[k] == 0) continue;
+      const glm::dvec3 d = view_d_[k] / double(view_n_[k]);
+      const glm::dvec3 y = view_y_[k] / double(view_n_[k]);
+      vse += glm::dot(d, d);
+      vss += glm::dot(y, y);
+    }
+    *view_relative_rms = vss > 0.0 ? std::sqrt(vse / vss) : 0.0;
+  }
 }
 
 void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
                      const ViewIndex& views, const std::vector<size_t>& rows,
                      double* rms, double* relative_rms,
                      double* view_relative_rms) {
-  const bool same_views = model.lut.views.size() == views.views().size();
-  const TexelFrame frame = MakeTexelFrame(model.normal);
-  double se = 0.0, ss = 0.0;
-  size_t n = 0;
-  // Per view: sums of model - data and of data, and the row count.
-  const size_t n_views = views.views().size();
-  std::vector<glm::dvec3> view_d(n_views, glm::dvec3(0.0)),
-      view_y(n_views, glm::dvec3(0.0));
-  std::vector<int> view_n(n_views, 0);
-  for (size_t index : rows) {
-    const TableRow& row = table.rows[index];
-    if (!IsReflectionRow(row)) continue;
-    // In the table's quantity, as every other fit reports (the model is
-    // rho, f = rho / wi.z).
-    const glm::dvec3& y = row.value;
-    const glm::dvec3 t = same_views ? model.lut.color[views.RowView(index)]
-                                    : LookupView(model.lut, row.wo).color;
-    const glm::dvec3 d =
-        t *
-            LafortuneF1(model.params, ToTexelFrame(frame, row.wi),
-                        ToTexelFrame(frame, row.wo)) *
-            QuantityFactor(Quantity::kCosineWeighted, table.quantity,
-                           row.wi.z) -
-        y;
-    se += glm::dot(d, d);
-    ss += glm::dot(y, y);
-    ++n;
-    const int view = views.RowView(index);
-    view_d[view] += d;
-    view_y[view] += y;
-    ++view_n[view];
-  }
-  *rms = n ? std::sqrt(se / (3.0 * n)) : 0.0;
-  *relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
-  if (view_relative_rms) {
-    double vse = 0.0, vss = 0.0;
-    for (size_t k = 0; k < n_views; ++k) {
-      if (view_n[k] == 0) continue;
-      const glm::dvec3 d = view_d[k] / double(view_n[k]);
-      const glm::dvec3 y = view_y[k] / double(view_n[k]);
-      vse += glm::dot(d, d);
-      vss += glm::dot(y, y);
-    }
-    *view_relative_rms = vss > 0.0 ? std::sqrt(vse / vss) : 0.0;
-  }
+  LafortuneErrorSums sums(model, table, views);
+  for (size_t index : rows) sums.Add(table.rows[index], views.RowView(index));
+  sums.Finish(rms, relative_rms, view_relative_rms);
 }
 
 TexelSamples Subsample(const TexelSamples& samples, int stride) {

@@ -70,6 +70,31 @@ TexelSamples CollectSamples(const MeasurementTable& table,
                             const Weighting& weighting, const ViewIndex& views,
                             const std::vector<size_t>& rows, int* skipped);
 
+// CollectSamples one row at a time, for rows that are not held in one
+// table (a texture streamed from its images, fitting/lafortune_merge.h):
+// Add the rows in the order CollectSamples would see them, each with its
+// view and pair of the index, then Finish. The same sums in the same
+// order: the same samples, bit for bit.
+class SampleCollector {
+ public:
+  // `table`: the quantity and has_normal of the rows (no rows needed).
+  SampleCollector(const MeasurementTable& table, const ViewIndex& views);
+  void Add(const TableRow& row, int view, int pair, const Weighting& weighting);
+  // The samples; *skipped (may be null) the rows that are not reflection.
+  TexelSamples Finish(int* skipped);
+
+ private:
+  Quantity quantity_;
+  bool has_normal_;
+  TexelSamples s_;
+  std::vector<double> alpha_sum_;
+  std::vector<int> alpha_count_;
+  std::vector<int> slot_;           // pair -> sample
+  std::vector<glm::dvec3> sum_wy_;  // per sample: sum w y
+  glm::dvec3 normal_sum_{0.0};
+  int dropped_ = 0;
+};
+
 // RMS and relative RMS error of a model over table rows, in the table's
 // quantity. Rows at a stored view use its lookup-table entry directly (no
 // interpolation). view_relative_rms (may be null): the relative RMS error of
@@ -81,6 +106,29 @@ void LafortuneErrors(const LafortuneModel& model, const MeasurementTable& table,
                      const ViewIndex& views, const std::vector<size_t>& rows,
                      double* rms, double* relative_rms,
                      double* view_relative_rms = nullptr);
+
+// LafortuneErrors one row at a time (as SampleCollector): Add the rows in
+// the order LafortuneErrors would see them, then Finish.
+class LafortuneErrorSums {
+ public:
+  // `model` must outlive this; `table`: the rows' quantity.
+  LafortuneErrorSums(const LafortuneModel& model, const MeasurementTable& table,
+                     const ViewIndex& views);
+  void Add(const TableRow& row, int view);
+  void Finish(double* rms, double* relative_rms,
+              double* view_relative_rms) const;
+
+ private:
+  const LafortuneModel& model_;
+  Quantity quantity_;
+  bool same_views_;
+  TexelFrame frame_;
+  double se_ = 0.0, ss_ = 0.0;
+  size_t n_ = 0;
+  // Per view: sums of model - data and of data, and the row count.
+  std::vector<glm::dvec3> view_d_, view_y_;
+  std::vector<int> view_n_;
+};
 
 // Every stride-th sample of a scrambled order (Knuth's multiplicative hash
 // of the index), so that the subset spreads over all views and lights;

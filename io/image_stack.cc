@@ -33,6 +33,7 @@ namespace clothfit {
 namespace {
 
 using image_stack_internal::Fail;
+using image_stack_internal::Image;
 using image_stack_internal::kMaxPixels;
 
 // Most rows a stack may make (a row is sizeof(TableRow), ~150 bytes).
@@ -205,145 +206,129 @@ Manifest ParseManifest(std::string_view text, const std::string& name) {
   return manifest;
 }
 
-// Pixels of one image, as floats.
-struct Image {
-  int width = 0, height = 0, channels = 0;
-  int alpha = -1;               // alpha channel index, -1 when none
-  std::vector<int> colour;      // 1 (grey) or 3 (r, g, b) indices
-  std::vector<float> pixels;    // channels per pixel, row-major
-  bool integer_pixels = false;  // stored as integers (read scaled to [0, 1])
+}  // namespace
+
+struct ImageStackReader::State {
+  std::string manifest_path;
+  Manifest manifest;
+  MeasurementTable directions;
+  fs::path folder;
+  int width = 0, height = 0;
+  std::string first_image;  // the image whose size the others must have
+  // The normals of the last region read of the normal map.
+  PixelRegion normals_region{-1, -1, -1, -1};
+  std::vector<glm::dvec3> normals;
+
+  std::string Resolve(const std::string& name) const {
+    const fs::path file(name);
+    return (file.is_absolute() || folder.empty() ? file : folder / file)
+        .string();
+  }
 };
 
-Image ReadImage(const std::string& path, const std::string& manifest,
-                int line) {
-  const std::string listed =
-      " (listed on " + FormatLocation(manifest, line, 0) + ")";
-  const std::string file_problem = RegularFileProblem(path);
-  if (!file_problem.empty()) {
-    Fail(path, 0, 0, "cannot read image: " + file_problem + listed);
+ImageStackReader::ImageStackReader(const std::string& manifest_path)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.manifest_path = manifest_path;
+  s.manifest = ParseManifest(ReadFileToString(manifest_path), manifest_path);
+  MeasurementTable& table = s.manifest.table;
+  table.source = manifest_path;
+  table.has_texels = true;
+  table.has_sigma = false;
+  table.has_weight = false;
+  table.has_alpha = false;
+  table.has_normal = !s.manifest.normal_map.empty();
+  table.channels = 1;
+  s.folder = fs::path(manifest_path).parent_path();
+  s.directions = table;
+  for (const StackEntry& entry : s.manifest.entries) {
+    TableRow row;
+    row.wi = entry.wi;
+    row.wo = entry.wo;
+    row.source_line = entry.line;
+    s.directions.rows.push_back(row);
   }
-  const std::string header_problem = CheckImageHeader(path, kMaxPixels);
-  if (!header_problem.empty()) {
-    Fail(path, 0, 0, "cannot read image: " + header_problem + listed);
-  }
-  OIIO::ImageSpec config;
-  // Values as stored: PNG/TIFF colours are not multiplied by alpha.
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  std::unique_ptr<OIIO::ImageInput> in =
-      Quietly([&] { return OIIO::ImageInput::open(path, &config); });
-  if (!in) {
-    Fail(path, 0, 0,
-         "cannot read image: " + OneLineMessage(OIIO::geterror()) + listed);
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  image.integer_pixels = !spec.format.is_floating_point();
-  if (image.width < 1 || image.height < 1 || spec.depth > 1 ||
-      int64_t{image.width} * image.height > kMaxPixels) {
-    Fail(path, 0, 0,
-         "unsupported image size " + std::to_string(image.width) + " x " +
-             std::to_string(image.height) + " x " + std::to_string(spec.depth) +
-             listed);
-  }
-  if (image.channels < 1 || image.channels > 4) {
-    Fail(path, 0, 0,
-         "image has " + std::to_string(image.channels) +
-             " channels, expected 1 (grey), 2 (grey, alpha), 3 (rgb) or 4 "
-             "(rgba)" +
-             listed);
-  }
-  if (image.channels == 2 || image.channels == 4) {
-    image.alpha = spec.alpha_channel >= 0 && spec.alpha_channel < image.channels
-                      ? spec.alpha_channel
-                      : image.channels - 1;
-  }
-  for (int c = 0; c < image.channels; ++c) {
-    if (c != image.alpha) image.colour.push_back(c);
-  }
-  image.pixels.resize(static_cast<size_t>(image.width) * image.height *
-                      image.channels);
-  if (!Quietly([&] {
-        return in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
-                              image.pixels.data());
-      })) {
-    Fail(path, 0, 0,
-         "cannot read image: " + OneLineMessage(in->geterror()) + listed);
-  }
-  in->close();
-  // A measured value that is not a number (a dead pixel, a failed HDR
-  // merge) is the image's fault: named here, not later as a texel's fit.
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    if (std::isfinite(image.pixels[i])) continue;
-    const size_t pixel = i / static_cast<size_t>(image.channels);
-    Fail(path, 0, 0,
-         "pixel (" + std::to_string(pixel % image.width) + ", " +
-             std::to_string(pixel / image.width) + ") channel " +
-             std::to_string(i % image.channels) + " is " +
-             (std::isnan(image.pixels[i]) ? "NaN" : "infinite") +
-             " (a measurement is a finite number)" + listed);
-  }
-  return image;
+  // The size every image must have: the first's, read from a region of
+  // one pixel.
+  const bool normal_map = table.has_normal;
+  s.first_image = normal_map ? s.Resolve(s.manifest.normal_map)
+                             : s.Resolve(s.manifest.entries.front().file);
+  const Image first = image_stack_internal::ReadStackImage(
+      s.first_image, manifest_path,
+      normal_map ? s.manifest.normal_map_line : s.manifest.entries.front().line,
+      PixelRegion{0, 0, 1, 1});
+  s.width = first.width;
+  s.height = first.height;
 }
 
-// ReadImage with every failure as an InputError naming the image.
-Image ReadListedImage(const std::string& path, const std::string& manifest,
-                      int line) {
-  try {
-    return ReadImage(path, manifest, line);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    Fail(path, 0, 0, "out of memory reading the image");
-  } catch (const std::exception& error) {
-    Fail(path, 0, 0, std::string("cannot read image: ") + error.what());
-  }
+ImageStackReader::~ImageStackReader() = default;
+
+const MeasurementTable& ImageStackReader::header() const {
+  return state_->manifest.table;
+}
+const MeasurementTable& ImageStackReader::directions() const {
+  return state_->directions;
+}
+size_t ImageStackReader::images() const {
+  return state_->manifest.entries.size();
+}
+int ImageStackReader::width() const { return state_->width; }
+int ImageStackReader::height() const { return state_->height; }
+std::string ImageStackReader::ImagePath(size_t k) const {
+  return state_->Resolve(state_->manifest.entries.at(k).file);
+}
+std::string ImageStackReader::NormalMapPath() const {
+  return state_->manifest.normal_map.empty()
+             ? ""
+             : state_->Resolve(state_->manifest.normal_map);
 }
 
-// The unit normal of every pixel of a normal map: (x, y, z) in the surface
-// frame from its three colour channels, stored as they are in a float image
-// and as 2 v - 1 (v in [0, 1]) in an integer one; alpha is ignored.
-std::vector<glm::dvec3> NormalsOf(const Image& image, const std::string& path,
-                                  const std::string& manifest, int line) {
-  const std::string listed =
-      " (normal map of " + FormatLocation(manifest, line, 0) + ")";
-  if (image.colour.size() != 3) {
-    Fail(path, 0, 0,
-         "a normal map needs 3 colour channels (x, y, z), got " +
-             std::to_string(image.colour.size()) + listed);
+void ImageStackReader::AppendRows(size_t k, const PixelRegion& region,
+                                  int stride, bool local,
+                                  MeasurementTable* table) {
+  State& s = *state_;
+  const StackEntry& entry = s.manifest.entries.at(k);
+  const std::string path = ImagePath(k);
+  if (header().has_normal &&
+      (s.normals_region.x != region.x || s.normals_region.y != region.y ||
+       s.normals_region.width != region.width ||
+       s.normals_region.height != region.height)) {
+    const Image map = image_stack_internal::ReadStackImage(
+        s.first_image, s.manifest_path, s.manifest.normal_map_line, region);
+    s.normals = image_stack_internal::NormalsOf(
+        map, s.first_image, s.manifest_path, s.manifest.normal_map_line);
+    s.normals_region = region;
   }
-  std::vector<glm::dvec3> normals;
-  normals.reserve(static_cast<size_t>(image.width) * image.height);
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      const float* pixel =
-          image.pixels.data() +
-          (static_cast<size_t>(y) * image.width + x) * image.channels;
-      glm::dvec3 n(pixel[image.colour[0]], pixel[image.colour[1]],
-                   pixel[image.colour[2]]);
-      if (image.integer_pixels) n = 2.0 * n - 1.0;
-      const bool finite =
-          std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
-      const double scale =
-          finite ? std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)})
-                 : 0.0;
-      if (!(scale > 0.0)) {
-        char where[64];
-        std::snprintf(where, sizeof(where), "pixel (%d, %d): ", x, y);
-        Fail(path, 0, 0,
-             where + std::string(finite ? "zero" : "non-finite") + " normal (" +
-                 FormatNumber(n.x) + ", " + FormatNumber(n.y) + ", " +
-                 FormatNumber(n.z) + ")" + listed);
+  const Image image = image_stack_internal::ReadStackImage(
+      path, s.manifest_path, entry.line, region,
+      {s.width, s.height, s.first_image});
+  if (image.colour.size() == 3) table->channels = 3;
+  if (image.alpha >= 0) table->has_alpha = true;
+  const PixelRegion& r = image.region;
+  for (int y = 0; y < r.height; y += stride) {
+    for (int x = 0; x < r.width; x += stride) {
+      const size_t texel = static_cast<size_t>(y) * r.width + x;
+      const float* pixel = image.pixels.data() + texel * image.channels;
+      TableRow row;
+      row.wi = entry.wi;
+      row.wo = entry.wo;
+      if (image.colour.size() == 1) {
+        row.value = glm::dvec3(pixel[image.colour[0]]);
+      } else {
+        row.value = glm::dvec3(pixel[image.colour[0]], pixel[image.colour[1]],
+                               pixel[image.colour[2]]);
       }
-      normals.push_back(glm::normalize(n / scale));
+      if (image.alpha >= 0) row.alpha = pixel[image.alpha];
+      if (!s.normals.empty() && header().has_normal) {
+        row.normal = s.normals[texel];
+      }
+      row.s = local ? x : r.x + x;
+      row.t = local ? y : r.y + y;
+      row.source_line = entry.line;
+      table->rows.push_back(row);
     }
   }
-  return normals;
 }
-
-}  // namespace
 
 MeasurementTable ReadImageStack(const std::string& manifest_path,
                                 const ReadStackOptions& options) {
@@ -351,96 +336,37 @@ MeasurementTable ReadImageStack(const std::string& manifest_path,
     Fail(manifest_path, 0, 0,
          "stride must be at least 1, got " + std::to_string(options.stride));
   }
-  Manifest manifest =
-      ParseManifest(ReadFileToString(manifest_path), manifest_path);
-  MeasurementTable table = std::move(manifest.table);
-  table.source = manifest_path;
-  table.has_texels = true;
-  table.has_sigma = false;
-  table.has_weight = false;
-  table.has_alpha = false;
-  table.channels = 1;
-
-  const fs::path folder = fs::path(manifest_path).parent_path();
-  auto resolve = [&folder](const std::string& name) {
-    const fs::path file(name);
-    return (file.is_absolute() || folder.empty() ? file : folder / file)
-        .string();
-  };
-  const int stride = options.stride;
-  int width = 0;
-  int height = 0;
-  std::string first_image;
-  std::vector<glm::dvec3> normals;  // per pixel, from the normal map
-  if (!manifest.normal_map.empty()) {
-    first_image = resolve(manifest.normal_map);
-    if (options.images != nullptr) options.images->push_back(first_image);
-    const Image image =
-        ReadListedImage(first_image, manifest_path, manifest.normal_map_line);
-    width = image.width;
-    height = image.height;
-    normals =
-        NormalsOf(image, first_image, manifest_path, manifest.normal_map_line);
-    table.has_normal = true;
+  ImageStackReader reader(manifest_path);
+  MeasurementTable table = reader.header();
+  if (options.images != nullptr) {
+    if (table.has_normal) options.images->push_back(reader.NormalMapPath());
+    for (size_t k = 0; k < reader.images(); ++k) {
+      options.images->push_back(reader.ImagePath(k));
+    }
   }
-  for (const StackEntry& entry : manifest.entries) {
-    const std::string path = resolve(entry.file);
-    if (options.images != nullptr) options.images->push_back(path);
-    const Image image = ReadListedImage(path, manifest_path, entry.line);
-    if (first_image.empty()) {
-      width = image.width;
-      height = image.height;
-      first_image = path;
-    } else if (image.width != width || image.height != height) {
-      Fail(path, 0, 0,
-           "image is " + std::to_string(image.width) + " x " +
-               std::to_string(image.height) + ", but " + first_image + " is " +
-               std::to_string(width) + " x " + std::to_string(height) +
-               " (listed on " + FormatLocation(manifest_path, entry.line, 0) +
-               ")");
-    }
-    if (image.colour.size() == 3) table.channels = 3;
-    if (image.alpha >= 0) table.has_alpha = true;
-    if (table.rows.empty()) {
-      // The rows the whole stack makes, before they are made: images of
-      // a size one may read can still add up to more than the memory.
-      const int64_t per_image = ((int64_t{width} + stride - 1) / stride) *
-                                ((int64_t{height} + stride - 1) / stride);
-      const int64_t rows =
-          per_image * static_cast<int64_t>(manifest.entries.size());
-      if (rows > kMaxStackRows) {
-        Fail(manifest_path, 0, 0,
-             std::to_string(manifest.entries.size()) + " images of " +
-                 std::to_string(width) + " x " + std::to_string(height) +
-                 " texels make " + std::to_string(rows) + " rows, more than " +
-                 std::to_string(kMaxStackRows) + " (about " +
-                 std::to_string(kMaxStackRows * sizeof(TableRow) >> 30) +
-                 " GB); fit smaller images or fewer directions");
-      }
-      table.rows.reserve(static_cast<size_t>(rows));
-    }
-
-    for (int y = 0; y < height; y += stride) {
-      for (int x = 0; x < width; x += stride) {
-        const size_t texel = static_cast<size_t>(y) * width + x;
-        const float* pixel = image.pixels.data() + texel * image.channels;
-        TableRow row;
-        row.wi = entry.wi;
-        row.wo = entry.wo;
-        if (image.colour.size() == 1) {
-          row.value = glm::dvec3(pixel[image.colour[0]]);
-        } else {
-          row.value = glm::dvec3(pixel[image.colour[0]], pixel[image.colour[1]],
-                                 pixel[image.colour[2]]);
-        }
-        if (image.alpha >= 0) row.alpha = pixel[image.alpha];
-        if (!normals.empty()) row.normal = normals[texel];
-        row.s = x;
-        row.t = y;
-        row.source_line = entry.line;
-        table.rows.push_back(row);
-      }
-    }
+  PixelRegion region = options.region;
+  if (region.width == 0) region = {0, 0, reader.width(), reader.height()};
+  const int stride = options.stride;
+  // The rows the whole stack makes, before they are made: images of a size
+  // one may read can still add up to more than the memory.
+  const int64_t per_image = ((int64_t{region.width} + stride - 1) / stride) *
+                            ((int64_t{region.height} + stride - 1) / stride);
+  const int64_t rows = per_image * static_cast<int64_t>(reader.images());
+  if (rows > kMaxStackRows) {
+    Fail(manifest_path, 0, 0,
+         std::to_string(reader.images()) + " images of " +
+             std::to_string(region.width) + " x " +
+             std::to_string(region.height) + " texels make " +
+             std::to_string(rows) + " rows, more than " +
+             std::to_string(kMaxStackRows) + " (about " +
+             std::to_string(kMaxStackRows * sizeof(TableRow) >> 30) +
+             " GB); fit smaller images or fewer directions (or a region: "
+             "fit --region, docs/scale.md)");
+  }
+  table.rows.reserve(static_cast<size_t>(rows));
+  const bool local = options.region.width != 0;
+  for (size_t k = 0; k < reader.images(); ++k) {
+    reader.AppendRows(k, region, stride, local, &table);
   }
   return table;
 }

@@ -23,6 +23,8 @@
 // table then has has_normal set.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -31,12 +33,23 @@
 
 namespace clothfit {
 
+// A block of pixels: columns [x, x + width), rows [y, y + height); a
+// width of 0 stands for the whole image.
+struct PixelRegion {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
 struct ReadStackOptions {
   // Keep only every `stride`-th pixel in x and y (1 = all).
   int stride = 1;
   // If set: receives the path of every image read (the normal map too), so
   // that a caller can refuse an output that would replace one.
   std::vector<std::string>* images = nullptr;
+  // Only these pixels of each image (and of the normal map), read as a
+  // region (tiled files: the tiles it touches; scanline files, PNG: its
+  // rows, decoded whole); s, t then count from the region's corner. A
+  // region not inside the images is an InputError naming the image.
+  PixelRegion region;
 };
 
 // Throws InputError naming the manifest (line, column) or the image file
@@ -44,6 +57,43 @@ struct ReadStackOptions {
 // image, images of different sizes, empty manifest.
 MeasurementTable ReadImageStack(const std::string& manifest_path,
                                 const ReadStackOptions& options = {});
+
+// A stack read an image and a region at a time: the rows ReadImageStack
+// makes, in its order (image by image, row by row), without holding more
+// than the region asked for. Throws as ReadImageStack.
+class ImageStackReader {
+ public:
+  // Parses the manifest and reads the size of its first image (the normal
+  // map's when there is one).
+  explicit ImageStackReader(const std::string& manifest_path);
+  ~ImageStackReader();
+  ImageStackReader(const ImageStackReader&) = delete;
+  ImageStackReader& operator=(const ImageStackReader&) = delete;
+
+  // The table without rows (source, metadata, quantity, has_texels,
+  // has_normal), and one row per image with its directions (wi, wo,
+  // source_line; value 0): the order of the images.
+  const MeasurementTable& header() const;
+  const MeasurementTable& directions() const;
+  size_t images() const;
+  int width() const;   // of every image
+  int height() const;  // of every image
+  // The path of image k as resolved from the manifest's folder, and of the
+  // normal map ("" when none).
+  std::string ImagePath(size_t k) const;
+  std::string NormalMapPath() const;
+
+  // Appends to table->rows the rows of image k's pixels in `region` (row
+  // by row, every `stride`-th pixel; s, t from the region's corner when
+  // `local`, else of the image), and sets table->channels to 3 and
+  // table->has_alpha when the image has colour or alpha.
+  void AppendRows(size_t k, const PixelRegion& region, int stride, bool local,
+                  MeasurementTable* table);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // Writes a stack from a spatially varying table whose rows cover a full
 // width x height grid of (s, t) for each distinct (wi, wo) pair: one

@@ -12,6 +12,7 @@ PACKAGES=(
   libopencv-dev libopenimageio-dev openimageio-tools libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-scipy  # the bench's peer (benchmarks/peer/); optional at run time
+  python3-distributed  # scripts/dask_fit.py (docs/scale.md) and its test
   clang libclang-rt-14-dev  # libFuzzer for scripts/fuzz.sh (fuzz/)
   chromium  # headless browser tests (tests/browser_render_test.cc)
 )
