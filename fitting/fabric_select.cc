@@ -22,10 +22,14 @@ struct Fitted {
 };
 
 // A candidate family's fit of a table; `warm` (may be null) is its fit of
-// the whole table, which a fold's fit starts from (one start, no search).
+// the whole table, which a fold's fit starts from (one start, no search),
+// holding the entries named in `held` at their values in `warm`
+// (HeldInFolds).
 struct Candidate {
   std::string description;
-  std::function<Fitted(const MeasurementTable&, const ModelParams* warm)> fit;
+  std::function<Fitted(const MeasurementTable&, const ModelParams* warm,
+                       const std::vector<std::string>& held)>
+      fit;
 };
 
 std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
@@ -37,7 +41,8 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
                                         : "lafortune " + std::to_string(lobes) +
                                               " lobe(s), no lookup table";
     out.push_back(
-        {name, [=](const MeasurementTable& t, const ModelParams* warm) {
+        {name, [=](const MeasurementTable& t, const ModelParams* warm,
+                   const std::vector<std::string>&) {
            LafortuneMipOptions o;
            if (warm) o.fit.start = &std::get<LafortuneModel>(*warm);
            o.fit.lobes = lobes;
@@ -51,9 +56,11 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
          }});
   }
   out.push_back(
-      {"thread", [=](const MeasurementTable& t, const ModelParams* warm) {
+      {"thread", [=](const MeasurementTable& t, const ModelParams* warm,
+                     const std::vector<std::string>& held) {
          ThreadFitOptions o;
          if (warm) o.init = std::get<ThreadParams>(*warm);
+         o.fix = held;
          o.solver = solver;
          o.fit_scale = options.fit_scale;
          const ThreadFitResult r = FitThread(t, o);
@@ -82,8 +89,10 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
     GetPreset(v.preset, &weave);
     const ClothParams start = GenericClothStart(weave);
     out.push_back(
-        {v.label, [=](const MeasurementTable& t, const ModelParams* warm) {
+        {v.label, [=](const MeasurementTable& t, const ModelParams* warm,
+                      const std::vector<std::string>& held) {
            ClothFitOptions o;
+           o.fix = held;
            o.solver = solver;
            o.fit_scale = options.fit_scale;
            o.also_free = v.also_free;
@@ -138,6 +147,18 @@ std::string AtLimits(const FitReport& r) {
 
 }  // namespace
 
+std::vector<std::string> HeldInFolds(const FitReport& r) {
+  std::vector<std::string> held;
+  int free = 0;
+  for (const ParameterReport& p : r.parameters) {
+    free += p.free ? 1 : 0;
+    if (p.free && (p.no_effect || p.at_bound)) held.push_back(p.name);
+  }
+  // Every entry held would leave a fold nothing to fit.
+  if (static_cast<int>(held.size()) == free) held.clear();
+  return held;
+}
+
 FabricSelection SelectFabricModel(const MeasurementTable& table_in,
                                   const FabricSelectOptions& options_in) {
   if (table_in.quantity == Quantity::kTransmittance) {
@@ -187,7 +208,7 @@ FabricSelection SelectFabricModel(const MeasurementTable& table_in,
     report.samples = -1;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      whole[c] = candidates[c].fit(table, nullptr);
+      whole[c] = candidates[c].fit(table, nullptr, {});
     } catch (const InputError& e) {
       report.note = e.what();
       out.selection.candidates.push_back(report);
@@ -210,10 +231,12 @@ FabricSelection SelectFabricModel(const MeasurementTable& table_in,
     // Held out: each fold's rows predicted by the fit of the others.
     double hse = 0.0, hss = 0.0;
     bool all_folds = r.usable;
+    const std::vector<std::string> held = HeldInFolds(r);
     for (int f = 0; f < folds && all_folds; ++f) {
       Fitted part;
       try {
-        part = candidates[c].fit(WithoutFold(table, fold, f), &whole[c].params);
+        part = candidates[c].fit(WithoutFold(table, fold, f), &whole[c].params,
+                                 held);
       } catch (const InputError&) {
         all_folds = false;
         break;
