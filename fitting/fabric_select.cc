@@ -40,20 +40,19 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
     const std::string name = lobes == 0 ? "constant (Lambertian)"
                                         : "lafortune " + std::to_string(lobes) +
                                               " lobe(s), no lookup table";
-    out.push_back(
-        {name, [=](const MeasurementTable& t, const ModelParams* warm,
-                   const std::vector<std::string>&) {
-           LafortuneMipOptions o;
-           if (warm) o.fit.start = &std::get<LafortuneModel>(*warm);
-           o.fit.lobes = lobes;
-           o.fit.lookup_table = false;
-           o.fit.max_iterations = solver.max_iterations;
-           o.mip = false;
-           o.threads = 1;
-           o.noise = solver.noise;
-           const LafortuneFitResult r = FitLafortuneTable(t, o);
-           return Fitted{r.params, r.report};
-         }});
+    out.push_back({name, [=](const MeasurementTable& t, const ModelParams* warm,
+                             const std::vector<std::string>&) {
+                     LafortuneMipOptions o;
+                     if (warm) o.fit.start = &std::get<LafortuneModel>(*warm);
+                     o.fit.lobes = lobes;
+                     o.fit.lookup_table = false;
+                     o.fit.max_iterations = solver.max_iterations;
+                     o.mip = false;
+                     o.threads = 1;
+                     o.noise = solver.noise;
+                     const LafortuneFitResult r = FitLafortuneTable(t, o);
+                     return Fitted{r.params, r.report};
+                   }});
   }
   out.push_back(
       {"thread", [=](const MeasurementTable& t, const ModelParams* warm,

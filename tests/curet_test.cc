@@ -167,6 +167,15 @@ TEST(CuretFits, HeldOutSelectionNeverChoosesACollapsedLobe) {
   }
 }
 
+// The candidate of fit --model auto described so, or null.
+const CandidateReport* FindCandidate(const SelectionReport& r,
+                                     const std::string& description) {
+  for (const CandidateReport& c : r.candidates) {
+    if (c.description == description) return &c;
+  }
+  return nullptr;
+}
+
 // On real cloth (CUReT linen), the microcylinder model with its freedoms
 // (rotation, free offsets, a Lambertian term, free coverages) predicts
 // held-out rows better than two Lafortune lobes, converged, its
@@ -180,14 +189,10 @@ TEST(CuretFits, ClothWithFreedomsBeatsTwoLafortuneLobesHeldOutOnLinen) {
   FabricSelectOptions options;
   options.fit_scale = true;
   const FabricSelection s = SelectFabricModel(table, options);
-  const CandidateReport* lobes = nullptr;
-  const CandidateReport* cloth = nullptr;
-  for (const CandidateReport& c : s.selection.candidates) {
-    if (c.description == "lafortune 2 lobe(s), no lookup table") lobes = &c;
-    if (c.description == "cloth plain + rotation, offsets, diffuse, coverage") {
-      cloth = &c;
-    }
-  }
+  const CandidateReport* lobes =
+      FindCandidate(s.selection, "lafortune 2 lobe(s), no lookup table");
+  const CandidateReport* cloth = FindCandidate(
+      s.selection, "cloth plain + rotation, offsets, diffuse, coverage");
   ASSERT_TRUE(lobes && cloth);
   EXPECT_TRUE(cloth->converged) << cloth->note;
   EXPECT_LT(cloth->heldout_relative_rms, lobes->heldout_relative_rms);
@@ -216,14 +221,10 @@ TEST(CuretFits, ClothFoldsStayInTheirBasinOnRugB) {
   FabricSelectOptions options;
   options.fit_scale = true;
   const FabricSelection s = SelectFabricModel(table, options);
-  const CandidateReport* lobes = nullptr;
-  const CandidateReport* cloth = nullptr;
-  for (const CandidateReport& c : s.selection.candidates) {
-    if (c.description == "lafortune 2 lobe(s), no lookup table") lobes = &c;
-    if (c.description == "cloth plain + rotation, offsets, diffuse, coverage") {
-      cloth = &c;
-    }
-  }
+  const CandidateReport* lobes =
+      FindCandidate(s.selection, "lafortune 2 lobe(s), no lookup table");
+  const CandidateReport* cloth = FindCandidate(
+      s.selection, "cloth plain + rotation, offsets, diffuse, coverage");
   ASSERT_TRUE(lobes && cloth) << SelectionReportText(s.selection);
   EXPECT_TRUE(cloth->converged) << cloth->note;
   ASSERT_GT(cloth->heldout_relative_rms, 0.0);

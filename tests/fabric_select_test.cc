@@ -84,9 +84,9 @@ TEST(FabricSelect, FoldsHoldTheEntriesWithoutEffectOrOnABound) {
       Entry("diffuse_g", false, false, true),
   };
   EXPECT_EQ(HeldInFolds(whole),
-            (std::vector<std::string>{
-                "threads[0].kd", "threads[0].gamma_v_deg",
-                "threads[1].coverage", "threads[1].offsets_deg[0]"}));
+            (std::vector<std::string>{"threads[0].kd", "threads[0].gamma_v_deg",
+                                      "threads[1].coverage",
+                                      "threads[1].offsets_deg[0]"}));
   FitReport all_dead;
   all_dead.parameters = {Entry("kd", true, false, true),
                          Entry("gamma_v_deg", true, true, false),
