@@ -8,6 +8,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/lafortune_mip.h"
 #include "fitting/lafortune_select_internal.h"
+#include "fitting/least_squares.h"
 #include "fitting/thread_fit.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
@@ -150,7 +151,8 @@ std::vector<std::string> HeldInFolds(const FitReport& r) {
   std::vector<std::string> held;
   int free = 0;
   for (const ParameterReport& p : r.parameters) {
-    free += p.free ? 1 : 0;
+    // The fits free the scale after --fix (it is not theirs to fix).
+    free += p.free && p.name != kFitScale.name ? 1 : 0;
     if (p.free && (p.no_effect || p.at_bound)) held.push_back(p.name);
   }
   // Every entry held would leave a fold nothing to fit.

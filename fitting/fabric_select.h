@@ -64,7 +64,8 @@ struct FabricSelection {
 // scores another model than the one written (CUReT rug b, plain weave
 // with every freedom: whole table 0.235, held-out 0.267 with every entry
 // free in the folds, 0.246 with these held). None when that would hold
-// every free entry.
+// every free entry but the model's scale (which the fits free after their
+// --fix): a fold would have nothing of the model to fit.
 std::vector<std::string> HeldInFolds(const FitReport& whole);
 
 // Throws InputError for a transmittance table or one with fewer rows than

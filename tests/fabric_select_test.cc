@@ -70,7 +70,8 @@ ParameterReport Entry(const std::string& name, bool free, bool no_effect,
 
 // A fold's fit holds the free entries the whole-table fit left without
 // effect or on a bound, and nothing else; fixed entries stay out of the
-// list, and a list that would hold every free entry is empty.
+// list, and a list that would hold every free entry but the model's scale
+// (which the fits free after their --fix) is empty.
 TEST(FabricSelect, FoldsHoldTheEntriesWithoutEffectOrOnABound) {
   FitReport whole;
   whole.parameters = {
@@ -88,9 +89,9 @@ TEST(FabricSelect, FoldsHoldTheEntriesWithoutEffectOrOnABound) {
                                       "threads[1].coverage",
                                       "threads[1].offsets_deg[0]"}));
   FitReport all_dead;
-  all_dead.parameters = {Entry("kd", true, false, true),
-                         Entry("gamma_v_deg", true, true, false),
-                         Entry("eta", false, false, false)};
+  all_dead.parameters = {
+      Entry("kd", true, false, true), Entry("gamma_v_deg", true, true, false),
+      Entry("eta", false, false, false), Entry("scale", true, false, false)};
   EXPECT_TRUE(HeldInFolds(all_dead).empty());
 }
 
