@@ -170,7 +170,12 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   const ClothVector& v = weave->vector;
   LeastSquaresProblem lsq;
   lsq.specs = ClothSpecs(init);
-  ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
+  // With freedoms asked for, --fix waits for them: fixing the whole default
+  // set while a freedom stays free is a fit (fit --model auto's folds hold
+  // entries so, fitting/fabric_select.h HeldInFolds).
+  ApplyFreeFix(
+      options.also_free.empty() ? options.fix : std::vector<std::string>(),
+      options.free_only, &lsq.specs);
   FreeAlso(options.also_free, &lsq.specs);
   ApplyFreeFix(options.fix, {}, &lsq.specs);  // --fix wins over both
   // A thread whose offsets are all 0 has nothing for offset_scale to

@@ -8,6 +8,7 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/lafortune_mip.h"
 #include "fitting/lafortune_select_internal.h"
+#include "fitting/least_squares.h"
 #include "fitting/thread_fit.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
@@ -22,10 +23,14 @@ struct Fitted {
 };
 
 // A candidate family's fit of a table; `warm` (may be null) is its fit of
-// the whole table, which a fold's fit starts from (one start, no search).
+// the whole table, which a fold's fit starts from (one start, no search),
+// holding the entries named in `held` at their values in `warm`
+// (HeldInFolds).
 struct Candidate {
   std::string description;
-  std::function<Fitted(const MeasurementTable&, const ModelParams* warm)> fit;
+  std::function<Fitted(const MeasurementTable&, const ModelParams* warm,
+                       const std::vector<std::string>& held)>
+      fit;
 };
 
 std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
@@ -36,24 +41,26 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
     const std::string name = lobes == 0 ? "constant (Lambertian)"
                                         : "lafortune " + std::to_string(lobes) +
                                               " lobe(s), no lookup table";
-    out.push_back(
-        {name, [=](const MeasurementTable& t, const ModelParams* warm) {
-           LafortuneMipOptions o;
-           if (warm) o.fit.start = &std::get<LafortuneModel>(*warm);
-           o.fit.lobes = lobes;
-           o.fit.lookup_table = false;
-           o.fit.max_iterations = solver.max_iterations;
-           o.mip = false;
-           o.threads = 1;
-           o.noise = solver.noise;
-           const LafortuneFitResult r = FitLafortuneTable(t, o);
-           return Fitted{r.params, r.report};
-         }});
+    out.push_back({name, [=](const MeasurementTable& t, const ModelParams* warm,
+                             const std::vector<std::string>&) {
+                     LafortuneMipOptions o;
+                     if (warm) o.fit.start = &std::get<LafortuneModel>(*warm);
+                     o.fit.lobes = lobes;
+                     o.fit.lookup_table = false;
+                     o.fit.max_iterations = solver.max_iterations;
+                     o.mip = false;
+                     o.threads = 1;
+                     o.noise = solver.noise;
+                     const LafortuneFitResult r = FitLafortuneTable(t, o);
+                     return Fitted{r.params, r.report};
+                   }});
   }
   out.push_back(
-      {"thread", [=](const MeasurementTable& t, const ModelParams* warm) {
+      {"thread", [=](const MeasurementTable& t, const ModelParams* warm,
+                     const std::vector<std::string>& held) {
          ThreadFitOptions o;
          if (warm) o.init = std::get<ThreadParams>(*warm);
+         o.fix = held;
          o.solver = solver;
          o.fit_scale = options.fit_scale;
          const ThreadFitResult r = FitThread(t, o);
@@ -82,8 +89,10 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
     GetPreset(v.preset, &weave);
     const ClothParams start = GenericClothStart(weave);
     out.push_back(
-        {v.label, [=](const MeasurementTable& t, const ModelParams* warm) {
+        {v.label, [=](const MeasurementTable& t, const ModelParams* warm,
+                      const std::vector<std::string>& held) {
            ClothFitOptions o;
+           o.fix = held;
            o.solver = solver;
            o.fit_scale = options.fit_scale;
            o.also_free = v.also_free;
@@ -138,6 +147,19 @@ std::string AtLimits(const FitReport& r) {
 
 }  // namespace
 
+std::vector<std::string> HeldInFolds(const FitReport& r) {
+  std::vector<std::string> held;
+  int free = 0;
+  for (const ParameterReport& p : r.parameters) {
+    // The fits free the scale after --fix (it is not theirs to fix).
+    free += p.free && p.name != kFitScale.name ? 1 : 0;
+    if (p.free && (p.no_effect || p.at_bound)) held.push_back(p.name);
+  }
+  // Every entry held would leave a fold nothing to fit.
+  if (static_cast<int>(held.size()) == free) held.clear();
+  return held;
+}
+
 FabricSelection SelectFabricModel(const MeasurementTable& table_in,
                                   const FabricSelectOptions& options_in) {
   if (table_in.quantity == Quantity::kTransmittance) {
@@ -187,7 +209,7 @@ FabricSelection SelectFabricModel(const MeasurementTable& table_in,
     report.samples = -1;
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      whole[c] = candidates[c].fit(table, nullptr);
+      whole[c] = candidates[c].fit(table, nullptr, {});
     } catch (const InputError& e) {
       report.note = e.what();
       out.selection.candidates.push_back(report);
@@ -210,10 +232,12 @@ FabricSelection SelectFabricModel(const MeasurementTable& table_in,
     // Held out: each fold's rows predicted by the fit of the others.
     double hse = 0.0, hss = 0.0;
     bool all_folds = r.usable;
+    const std::vector<std::string> held = HeldInFolds(r);
     for (int f = 0; f < folds && all_folds; ++f) {
       Fitted part;
       try {
-        part = candidates[c].fit(WithoutFold(table, fold, f), &whole[c].params);
+        part = candidates[c].fit(WithoutFold(table, fold, f), &whole[c].params,
+                                 held);
       } catch (const InputError&) {
         all_folds = false;
         break;

@@ -149,6 +149,18 @@ TEST(ClothFreedoms, NamesFreeTheirEntriesAndConflictsAreRefused) {
   EXPECT_FALSE(Param(FitCloth(table, GenericClothStart(truth), options).report,
                      "diffuse_r")
                    .free);
+  // Fixing the whole default set leaves the freedoms to fit; fixing those
+  // too leaves nothing.
+  options.fix = {"kd", "gamma_s_deg", "gamma_v_deg", "albedo"};
+  options.also_free = {"rotation_deg"};
+  const ClothFitResult rotation_only =
+      FitCloth(table, GenericClothStart(truth), options);
+  EXPECT_TRUE(rotation_only.report.usable) << rotation_only.report.message;
+  for (const ParameterReport& p : rotation_only.report.parameters) {
+    EXPECT_EQ(p.free, p.name == "rotation_deg") << p.name;
+  }
+  options.fix.push_back("rotation_deg");
+  EXPECT_THROW(FitCloth(table, GenericClothStart(truth), options), InputError);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "io/input_error.h"
 #include "models/presets.h"
@@ -55,6 +56,43 @@ TEST(FabricSelect, PlainWeaveClothIsChosenForAPlainWeaveTable) {
     EXPECT_TRUE(c.usable) << c.description;
     EXPECT_GE(c.heldout_relative_rms, 0.0) << c.description;
   }
+}
+
+ParameterReport Entry(const std::string& name, bool free, bool no_effect,
+                      bool at_bound) {
+  ParameterReport p;
+  p.name = name;
+  p.free = free;
+  p.no_effect = no_effect;
+  p.at_bound = at_bound;
+  return p;
+}
+
+// A fold's fit holds the free entries the whole-table fit left without
+// effect or on a bound, and nothing else; fixed entries stay out of the
+// list, and a list that would hold every free entry but the model's scale
+// (which the fits free after their --fix) is empty.
+TEST(FabricSelect, FoldsHoldTheEntriesWithoutEffectOrOnABound) {
+  FitReport whole;
+  whole.parameters = {
+      Entry("threads[0].eta", false, false, false),
+      Entry("threads[0].kd", true, false, true),
+      Entry("threads[0].gamma_s_deg", true, false, false),
+      Entry("threads[0].gamma_v_deg", true, true, false),
+      Entry("threads[1].coverage", true, false, true),
+      Entry("threads[1].offsets_deg[0]", true, true, false),
+      Entry("rotation_deg", true, false, false),
+      Entry("diffuse_g", false, false, true),
+  };
+  EXPECT_EQ(HeldInFolds(whole),
+            (std::vector<std::string>{"threads[0].kd", "threads[0].gamma_v_deg",
+                                      "threads[1].coverage",
+                                      "threads[1].offsets_deg[0]"}));
+  FitReport all_dead;
+  all_dead.parameters = {
+      Entry("kd", true, false, true), Entry("gamma_v_deg", true, true, false),
+      Entry("eta", false, false, false), Entry("scale", true, false, false)};
+  EXPECT_TRUE(HeldInFolds(all_dead).empty());
 }
 
 TEST(FabricSelect, BadInputIsRefused) {
