@@ -113,6 +113,8 @@ struct ClothParamsT {
   T rotation_deg = kClothRotation.Default<T>();     // kClothRotation
   Vec3<T> diffuse = kClothDiffuse.DefaultRgb<T>();  // kClothDiffuse
   T scale = kModelScale.Default<T>();               // kModelScale
+  // models/energy_bound.h; null: the paper's model as it is.
+  std::shared_ptr<const EnergyBound> energy_bound;
 };
 using ClothThread = ClothThreadT<double>;
 using ClothParams = ClothParamsT<double>;
@@ -437,11 +439,12 @@ inline constexpr ModelInfo kModelInfo<ClothParamsT<T>> = {
     "cloth", Quantity::kCosineWeighted, false};
 
 // A cloth patch in the surface frame: rho (eq. 13) times the model's
-// scale.
+// scale, bounded by its energy bound.
 template <typename T, typename G>
 Vec3<T> NativeValue(const ClothParamsT<T>& c, const Vec3<G>& wi,
                     const Vec3<G>& wo) {
-  return ClothRho(c, Cast<T>(wi), Cast<T>(wo)) * c.scale;
+  return ClothRho(c, Cast<T>(wi), Cast<T>(wo)) *
+         (c.scale * T(EnergyBoundFactor(c.energy_bound.get(), wi.z, wo.z)));
 }
 
 }  // namespace clothfit

@@ -25,7 +25,9 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <memory>
 
+#include "models/energy_bound.h"
 #include "models/math.h"
 #include "models/params.h"
 
@@ -102,6 +104,10 @@ struct ThreadParamsT {
   // kModelScale: a factor on the thread alone (a cloth's threads keep 1;
   // the cloth has its own).
   T scale = kModelScale.Default<T>();
+  // The energy bound of a thread alone (models/energy_bound.h); null: the
+  // paper's model as it is. A cloth's threads leave it null (the cloth has
+  // its own).
+  std::shared_ptr<const EnergyBound> energy_bound;
 };
 using ThreadParams = ThreadParamsT<double>;
 
@@ -298,11 +304,12 @@ inline constexpr ModelInfo kModelInfo<ThreadParamsT<T>> = {
     "thread", Quantity::kBrdf, false};
 
 // A thread alone, in the thread frame: its BSDF f (eq. 2) times the
-// model's scale.
+// model's scale, bounded by its energy bound.
 template <typename T, typename G>
 Vec3<T> NativeValue(const ThreadParamsT<T>& p, const Vec3<G>& wi,
                     const Vec3<G>& wo) {
-  return ThreadBsdfLocal(p, Cast<T>(wi), Cast<T>(wo)) * p.scale;
+  return ThreadBsdfLocal(p, Cast<T>(wi), Cast<T>(wo)) *
+         (p.scale * T(EnergyBoundFactor(p.energy_bound.get(), wi.z, wo.z)));
 }
 
 }  // namespace clothfit

@@ -41,6 +41,7 @@ ThreadParamsT<R> CastThread(const ThreadParams& p) {
   ThreadParamsT<R> out;
   CastFlat<R>(p, &out);
   out.scale = R(p.scale);
+  out.energy_bound = p.energy_bound;
   return out;
 }
 
@@ -62,6 +63,7 @@ PreparedCloth<R> PrepareCloth(const ClothParams& c) {
   out.cloth.rotation_deg = R(c.rotation_deg);
   out.cloth.diffuse = Cast<R>(c.diffuse);
   out.cloth.scale = R(c.scale);
+  out.cloth.energy_bound = c.energy_bound;
   for (const ClothThread& th : c.threads) {
     ClothThreadT<R> t;
     t.direction = th.direction;
@@ -163,7 +165,9 @@ inline constexpr ModelInfo kModelInfo<PreparedLafortune<R>> =
 template <typename R>
 Vec3<R> NativeValue(const PreparedCloth<R>& p, const Vec3<R>& wi,
                     const Vec3<R>& wo) {
-  return ClothRhoWithFrames(p.cloth, p, wi, wo) * p.cloth.scale;
+  return ClothRhoWithFrames(p.cloth, p, wi, wo) *
+         (p.cloth.scale *
+          EnergyBoundFactor(p.cloth.energy_bound.get(), wi.z, wo.z));
 }
 
 template <typename R>
