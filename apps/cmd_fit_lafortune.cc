@@ -79,6 +79,26 @@ std::vector<std::string> RecordedFitArguments(int argc, char** argv) {
   return out;
 }
 
+// The rows of an image stack (of `region`; width 0: every pixel), after
+// checking that no image of it is --out or its index copy.
+MeasurementTable ReadStackFor(const std::string& stack,
+                              const PixelRegion& region,
+                              const std::string& out_path) {
+  ReadStackOptions read;
+  std::vector<std::string> images;
+  read.images = &images;
+  read.region = region;
+  MeasurementTable table = ReadImageStack(stack, read);
+  std::vector<NamedFile> inputs;
+  for (const std::string& image : images) {
+    inputs.push_back({"an image of --stack", image});
+  }
+  CheckOutputsDistinct(
+      {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
+      inputs);
+  return table;
+}
+
 #endif
 
 // fit --stack --region: one block of the texture as a part file.
@@ -119,18 +139,7 @@ int FitLafortuneRegion(const CommandArgs& args, int argc, char** argv,
   info.mip = options.mip;
   info.stack = fs::absolute(stack).lexically_normal().string();
   info.fit = RecordedFitArguments(argc, argv);
-  ReadStackOptions read;
-  std::vector<std::string> images;
-  read.images = &images;
-  read.region = region;
-  const MeasurementTable table = ReadImageStack(stack, read);
-  std::vector<NamedFile> inputs;
-  for (const std::string& image : images) {
-    inputs.push_back({"an image of --stack", image});
-  }
-  CheckOutputsDistinct(
-      {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
-      inputs);
+  const MeasurementTable table = ReadStackFor(stack, region, out_path);
   progress::FlushWarnings();  // the work starts
   auto task = std::make_shared<progress::Task>("fit", "texel fits");
   options.progress = [task](int done, int total) { task->Update(done, total); };
@@ -169,17 +178,7 @@ int RunFitLafortune(int argc, char** argv) {
 #ifdef CLOTHFIT_LIGHT
     RunInFullBinary();
 #else
-    ReadStackOptions stack;
-    std::vector<std::string> images;
-    stack.images = &images;
-    table = ReadImageStack(source, stack);
-    std::vector<NamedFile> inputs;
-    for (const std::string& image : images) {
-      inputs.push_back({"an image of --stack", image});
-    }
-    CheckOutputsDistinct(
-        {{"--out", out_path}, {"--out's index copy", out_path + ".json"}},
-        inputs);
+    table = ReadStackFor(source, PixelRegion(), out_path);
 #endif
   } else {
     table = ReadTableOption(args, source);
