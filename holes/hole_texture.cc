@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <opencv2/core.hpp>
@@ -110,7 +111,9 @@ CountPyramid HoleDistancesFromMask(const Mask& mask) {
   const int margin = kDistanceBins + 1;
   const std::vector<int> cols = WrapTable(w, margin);
   const std::vector<int> rows = WrapTable(h, margin);
-  std::vector<uint8_t> base(static_cast<size_t>(w) * h * kDistanceChannels, 0);
+  // One bit per indicator (0.13 GB for a 4096 x 4096 mask, not 1.1 GB).
+  static_assert(kDistanceChannels <= 64, "the run counts fill one word");
+  std::vector<uint64_t> bits(static_cast<size_t>(w) * h, 0);
   int runs[kDirections8];
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -137,16 +140,18 @@ CountPyramid HoleDistancesFromMask(const Mask& mask) {
           diagonal = kDistanceBins;
         }
       }
-      uint8_t* out =
-          base.data() + (static_cast<size_t>(y) * w + x) * kDistanceChannels;
+      // C_d[j] = [k_d <= j]: bits runs[d] .. kDistanceBins - 1 of
+      // direction d's bins.
+      uint64_t word = 0;
       for (int d = 0; d < kDirections8; ++d) {
-        for (int j = runs[d]; j < kDistanceBins; ++j) {
-          out[d * kDistanceBins + j] = 1;
-        }
+        const uint64_t bins = (uint64_t{1} << kDistanceBins) - 1;
+        const uint64_t below = (uint64_t{1} << runs[d]) - 1;
+        word |= (bins & ~below) << (d * kDistanceBins);
       }
+      bits[static_cast<size_t>(y) * w + x] = word;
     }
   }
-  return CountPyramid(w, h, kDistanceChannels, std::move(base));
+  return CountPyramid(w, h, kDistanceChannels, std::move(bits));
 }
 
 HoleTexture AnalyzeMask(const Mask& mask, bool with_distances) {

@@ -8,14 +8,11 @@
 #include <ImfTileDescription.h>
 #include <ImfTileDescriptionAttribute.h>
 #include <ImfTiledInputFile.h>
-#include <ImfTiledOutputFile.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
@@ -29,117 +26,38 @@
 #include "io/atomic_file.h"
 #include "io/input_error.h"
 #include "io/json_text_internal.h"
+#include "io/param_mipmap_internal.h"
 #include "io/text_util.h"
 #include "models/mip_levels.h"
 
 namespace clothfit {
-namespace {
+namespace param_mipmap_internal {
 
-using nlohmann::json;
-
-constexpr char kFormat[] = "clothfit-param-mipmap 1";
-// The EXR header attribute that holds the index, so that the EXR is
-// complete alone; the .exr.json beside it is a copy for people and tools.
-constexpr char kIndexAttribute[] = "clothfit:index";
-constexpr int kTileSize = 32;
-// OpenEXR's limit on channel names (with the long-names flag).
-constexpr size_t kMaxChannelNameLength = 255;
-// Largest base size accepted (per side), and the largest number of floats in
-// all levels together (8 GiB); larger indexes are rejected as corrupt
-// before anything is allocated.
-constexpr int64_t kMaxSide = int64_t{1} << 24;
-constexpr int64_t kMaxFloats = int64_t{1} << 31;
-
-[[noreturn]] void Fail(const std::string& path, const std::string& problem) {
-  throw InputError(path + ": " + problem);
-}
-
-std::string BaseName(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-// Checks sizes and names; `path` is used in messages.
-// "" when every value is finite, else where the first one that is not
-// lies: "channel 'lobe0.N.R' at level 0, texel (3, 4) is NaN".
-std::string FirstNonFinite(const ParamMipmap& mipmap) {
-  for (size_t level = 0; level < mipmap.levels.size(); ++level) {
-    const ParamImage& image = mipmap.levels[level];
-    for (size_t c = 0; c < image.data.size(); ++c) {
-      const std::vector<float>& values = image.data[c];
-      for (size_t i = 0; i < values.size(); ++i) {
-        if (std::isfinite(values[i])) continue;
-        const size_t w = static_cast<size_t>(std::max(image.width, 1));
-        return "channel '" +
-               (c < mipmap.channels.size() ? mipmap.channels[c] : "?") +
-               "' at level " + std::to_string(level) + ", texel (" +
-               std::to_string(i % w) + ", " + std::to_string(i / w) + ") is " +
-               (std::isnan(values[i]) ? "NaN" : "infinite");
-      }
+std::string FirstNonFiniteIn(const std::vector<std::string>& channels,
+                             const ParamImage& image, int level, int y0) {
+  for (size_t c = 0; c < image.data.size(); ++c) {
+    const std::vector<float>& values = image.data[c];
+    for (size_t i = 0; i < values.size(); ++i) {
+      if (std::isfinite(values[i])) continue;
+      const size_t w = static_cast<size_t>(std::max(image.width, 1));
+      return "channel '" + (c < channels.size() ? channels[c] : "?") +
+             "' at level " + std::to_string(level) + ", texel (" +
+             std::to_string(i % w) + ", " + std::to_string(y0 + i / w) +
+             ") is " + (std::isnan(values[i]) ? "NaN" : "infinite");
     }
   }
   return "";
 }
 
-void ValidateMipmap(const ParamMipmap& mipmap, const std::string& path) {
-  if (mipmap.channels.empty()) Fail(path, "param mip map has no channels");
-  std::set<std::string> names;
-  for (const std::string& name : mipmap.channels) {
-    if (name.empty()) Fail(path, "empty channel name");
-    if (name.size() > kMaxChannelNameLength ||
-        name.find('\0') != std::string::npos) {
-      Fail(path, "channel name '" + name.substr(0, 40) +
-                     "...' is longer than 255 bytes or holds a NUL byte");
-    }
-    if (!names.insert(name).second) {
-      Fail(path, "duplicate channel name '" + name + "'");
-    }
+std::string FirstNonFinite(const ParamMipmap& mipmap) {
+  for (size_t level = 0; level < mipmap.levels.size(); ++level) {
+    const std::string problem = FirstNonFiniteIn(
+        mipmap.channels, mipmap.levels[level], static_cast<int>(level), 0);
+    if (!problem.empty()) return problem;
   }
-  if (mipmap.levels.empty()) Fail(path, "param mip map has no levels");
-  const int width = mipmap.levels[0].width;
-  const int height = mipmap.levels[0].height;
-  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide) {
-    Fail(path, "bad base size " + std::to_string(width) + " x " +
-                   std::to_string(height));
-  }
-  // Either the full chain down to 1 x 1 or the base level alone.
-  const int full_levels = MipLevelCount(width, height);
-  const int expected_levels = mipmap.levels.size() == 1 ? 1 : full_levels;
-  if (static_cast<int>(mipmap.levels.size()) != expected_levels) {
-    Fail(path, "a " + std::to_string(width) + " x " + std::to_string(height) +
-                   " base needs 1 level or " + std::to_string(full_levels) +
-                   " levels (down to 1 x 1), got " +
-                   std::to_string(mipmap.levels.size()));
-  }
-  for (int level = 0; level < expected_levels; ++level) {
-    const ParamImage& image = mipmap.levels[level];
-    const int level_width = MipLevelSize(width, level);
-    const int level_height = MipLevelSize(height, level);
-    const std::string label = "level " + std::to_string(level);
-    if (image.width != level_width || image.height != level_height) {
-      Fail(path, label + " is " + std::to_string(image.width) + " x " +
-                     std::to_string(image.height) + ", expected " +
-                     std::to_string(level_width) + " x " +
-                     std::to_string(level_height));
-    }
-    if (image.data.size() != mipmap.channels.size()) {
-      Fail(path, label + " has " + std::to_string(image.data.size()) +
-                     " channels, expected " +
-                     std::to_string(mipmap.channels.size()));
-    }
-    const size_t texels = static_cast<size_t>(level_width) * level_height;
-    for (size_t c = 0; c < image.data.size(); ++c) {
-      if (image.data[c].size() != texels) {
-        Fail(path, label + " channel '" + mipmap.channels[c] + "' has " +
-                       std::to_string(image.data[c].size()) +
-                       " values, expected " + std::to_string(texels));
-      }
-    }
-  }
+  return "";
 }
 
-// A frame buffer with one FLOAT slice per channel over `image`, whose pixel
-// (0, 0) sits at (x0, y0) of the file's data window.
 Imf::FrameBuffer MakeFrameBuffer(const std::vector<std::string>& channels,
                                  const ParamImage& image, int x0, int y0) {
   Imf::FrameBuffer frame_buffer;
@@ -159,44 +77,22 @@ Imf::FrameBuffer MakeFrameBuffer(const std::vector<std::string>& channels,
   return frame_buffer;
 }
 
-// Writes the EXR under `file` (a name OutputFile gave), with the index text
-// in its header; returns "" or the problem.
-std::string WriteExr(const ParamMipmap& mipmap, const std::string& file,
-                     const std::string& index_text) {
-  const int width = mipmap.levels[0].width;
-  const int height = mipmap.levels[0].height;
-  try {
-    Imf::Header header(width, height);
-    const bool mipmapped =
-        static_cast<int>(mipmap.levels.size()) == MipLevelCount(width, height);
-    header.setTileDescription(Imf::TileDescription(
-        kTileSize, kTileSize, mipmapped ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
-        Imf::ROUND_DOWN));
-    header.compression() = Imf::ZIP_COMPRESSION;
-    for (const std::string& name : mipmap.channels) {
-      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    }
-    header.insert(kIndexAttribute, Imf::StringAttribute(index_text));
-    std::ofstream stream(file, std::ios::binary | std::ios::trunc);
-    if (!stream) return std::string("cannot write: ") + std::strerror(errno);
-    {
-      Imf::StdOFStream exr_stream(stream, file.c_str());
-      Imf::TiledOutputFile out(exr_stream, header);
-      for (int level = 0; level < out.numLevels(); ++level) {
-        out.setFrameBuffer(
-            MakeFrameBuffer(mipmap.channels, mipmap.levels[level], 0, 0));
-        out.writeTiles(0, out.numXTiles(level) - 1, 0, out.numYTiles(level) - 1,
-                       level);
-      }
-      // The destructor writes the tile offset table.
-    }
-    stream.close();
-    if (!stream) return "cannot write: error while writing the OpenEXR file";
-    return "";
-  } catch (const std::exception& error) {
-    return std::string("cannot write OpenEXR file: ") + error.what();
-  }
-}
+}  // namespace param_mipmap_internal
+
+namespace {
+
+using param_mipmap_internal::Fail;
+using param_mipmap_internal::FirstNonFinite;
+using param_mipmap_internal::kFormat;
+using param_mipmap_internal::kIndexAttribute;
+using param_mipmap_internal::kMaxSide;
+using param_mipmap_internal::MakeFrameBuffer;
+
+using nlohmann::json;
+
+// The largest number of floats in all levels together (8 GiB); larger
+// indexes are rejected as corrupt before anything is allocated.
+constexpr int64_t kMaxFloats = int64_t{1} << 31;
 
 // Reads a non-negative integer member of the index.
 int IndexInt(const json& index, const char* key, const std::string& name) {
@@ -350,54 +246,6 @@ void ReadExr(const std::string& path, ParamMipmap* mipmap) {
 }
 
 }  // namespace
-
-void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path) {
-  if (path.empty()) Fail(path, "cannot write: empty path");
-  ValidateMipmap(mipmap, path);
-  const std::string non_finite = FirstNonFinite(mipmap);
-  if (!non_finite.empty()) Fail(path, "not written: " + non_finite);
-  json metadata;
-  try {
-    metadata =
-        json::parse(mipmap.metadata_json.empty() ? "{}" : mipmap.metadata_json);
-  } catch (const json::exception& error) {
-    Fail(path, std::string("metadata is not valid JSON: ") + error.what());
-  }
-  if (!metadata.is_object()) Fail(path, "metadata is not a JSON object");
-
-  const int width = mipmap.levels[0].width;
-  const int height = mipmap.levels[0].height;
-  json index = {{"format", kFormat},
-                {"exr", BaseName(path)},
-                {"width", width},
-                {"height", height},
-                {"levels", static_cast<int>(mipmap.levels.size())},
-                {"channels", mipmap.channels},
-                {"metadata", std::move(metadata)}};
-  std::string index_text;
-  try {
-    index_text = index.dump(2) + "\n";
-  } catch (const json::exception& error) {
-    // Channel names or metadata that are not valid UTF-8.
-    Fail(path, std::string("cannot write index: ") + error.what());
-  }
-
-  // The EXR and its index copy are committed together, after both were
-  // written: a failure leaves both as they were. A device or standard
-  // output gets the EXR alone.
-  OutputFile exr(path);
-  const std::string problem = WriteExr(mipmap, exr.write_path(), index_text);
-  if (!problem.empty()) Fail(path, problem);
-  const OutputTarget target = ResolveOutput(path);
-  if (target.direct()) {
-    exr.Commit();
-    return;
-  }
-  OutputFile copy(target.path + ".json");
-  copy.Write(index_text);
-  exr.Commit();
-  copy.Commit();
-}
 
 ParamMipmap ReadParamMipmap(const std::string& path) {
   const std::string problem = RegularFileProblem(path);

@@ -8,6 +8,7 @@
 // level alone (a tiled ONE_LEVEL file, for fits without mip levels).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,25 @@ struct ParamMipmap {
 // the path on failure or on an inconsistent mip map (level sizes, channel
 // counts, data sizes).
 void WriteParamMipmap(const ParamMipmap& mipmap, const std::string& path);
+
+// A map too large to hold as floats at once (the 64 run counts of a
+// 4096 x 4096 mask take 5.7 GB), written a band of rows at a time.
+struct ParamMipmapBands {
+  std::vector<std::string> channels;  // channel names, in order
+  int width = 0, height = 0;          // level 0
+  bool mipmapped = true;  // every level down to 1 x 1, else level 0 alone
+  std::string metadata_json = "{}";
+  // Writes every value of rows [y0, y0 + band->height) of `level` into
+  // band->data[c][(y - y0) * band->width + x]; width, height and data come
+  // sized. Called for the bands of level 0 top to bottom, then level 1 ...
+  std::function<void(int level, int y0, ParamImage* band)> fill;
+};
+
+// Writes the same files as WriteParamMipmap from `bands`, holding one band
+// of 32 rows at a time. A non-finite value fails (InputError naming the
+// channel, level and texel) and leaves the files as they were.
+void WriteParamMipmapBands(const ParamMipmapBands& bands,
+                           const std::string& path);
 
 // Reads both files back. Throws InputError naming the file and the problem
 // (missing file, not a mip-mapped EXR, channel missing from the index,

@@ -14,6 +14,7 @@
 #include "io/table.h"
 #include "tests/cli_test_util.h"
 #include "tests/io_test_util.h"
+#include "tests/pyramid_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -64,20 +65,13 @@ TEST(HolesCliTest, AnalyzeWritesTheCountPyramid) {
   const Mask mask = ReadMask(mask_path);
   const HoleTexture expected = AnalyzeMask(mask, true);
   std::string metadata;
-  const CountPyramid back =
-      ReadCountPyramid(counts, CountKind::kHoleCounts, &metadata);
-  ASSERT_EQ(back.levels(), expected.counts.levels());
-  for (int level = 0; level < back.levels(); ++level) {
-    for (int y = 0; y < back.height(level); ++y) {
-      for (int x = 0; x < back.width(level); ++x) {
-        EXPECT_EQ(HoleTexelAt(back, level, x, y).counts,
-                  HoleTexelAt(expected.counts, level, x, y).counts);
-      }
-    }
-  }
+  testing_util::ExpectSamePyramid(
+      ReadCountPyramid(counts, CountKind::kHoleCounts, &metadata),
+      expected.counts);
   EXPECT_NE(metadata.find("m.png"), std::string::npos);
-  EXPECT_EQ(ReadCountPyramid(distances, CountKind::kHoleDistances).base(),
-            expected.distances.base());
+  testing_util::ExpectSamePyramid(
+      ReadCountPyramid(distances, CountKind::kHoleDistances),
+      expected.distances);
 }
 
 TEST(HolesCliTest, EvalMatchesTheLibrary) {

@@ -13,6 +13,7 @@
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "tests/io_test_util.h"
+#include "tests/pyramid_test_util.h"
 
 namespace clothfit {
 namespace {
@@ -20,25 +21,9 @@ namespace {
 namespace fs = std::filesystem;
 using testing_util::ErrorOf;
 using testing_util::ExpectHas;
+using testing_util::ExpectSamePyramid;
 
 fs::path TestDir() { return testing_util::FreshTestDir("holes_io_test_"); }
-
-void ExpectSamePyramid(const CountPyramid& a, const CountPyramid& b) {
-  ASSERT_EQ(a.levels(), b.levels());
-  ASSERT_EQ(a.channels(), b.channels());
-  std::vector<double> ca(a.channels()), cb(b.channels());
-  for (int level = 0; level < a.levels(); ++level) {
-    ASSERT_EQ(a.width(level), b.width(level));
-    ASSERT_EQ(a.height(level), b.height(level));
-    for (int y = 0; y < a.height(level); ++y) {
-      for (int x = 0; x < a.width(level); ++x) {
-        a.Counts(level, x, y, ca.data());
-        b.Counts(level, x, y, cb.data());
-        EXPECT_EQ(ca, cb) << "level " << level << " texel " << x << "," << y;
-      }
-    }
-  }
-}
 
 TEST(HolesExrTest, RoundTripOfCountsAndDistances) {
   const fs::path dir = TestDir();

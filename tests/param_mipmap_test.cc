@@ -7,6 +7,8 @@
 #include <ImfTiledOutputFile.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -395,6 +397,83 @@ TEST(ParamMipmapTest, NonFiniteValuesAreRefused) {
               {path, "channel 'lut.0.B' at level 0, texel (0, 0) is",
                std::isnan(value) ? "NaN" : "infinite"});
   }
+}
+
+// The bands of `mipmap`: fill copies the rows asked for; `calls` records
+// (level, y0, rows) of each call.
+ParamMipmapBands BandsOf(const ParamMipmap& mipmap,
+                         std::vector<std::array<int, 3>>* calls) {
+  ParamMipmapBands bands;
+  bands.channels = mipmap.channels;
+  bands.width = mipmap.levels[0].width;
+  bands.height = mipmap.levels[0].height;
+  bands.mipmapped = mipmap.levels.size() > 1;
+  bands.metadata_json = mipmap.metadata_json;
+  bands.fill = [&mipmap, calls](int level, int y0, ParamImage* band) {
+    calls->push_back({level, y0, band->height});
+    const ParamImage& image = mipmap.levels[level];
+    ASSERT_EQ(band->width, image.width);
+    ASSERT_EQ(band->data.size(), image.data.size());
+    for (size_t c = 0; c < image.data.size(); ++c) {
+      ASSERT_EQ(band->data[c].size(),
+                static_cast<size_t>(band->width) * band->height);
+      std::copy_n(
+          image.data[c].begin() + static_cast<ptrdiff_t>(y0) * image.width,
+          band->data[c].size(), band->data[c].begin());
+    }
+  };
+  return bands;
+}
+
+// Written a band at a time, a map is the same file, byte for byte, as
+// written whole; the bands cover each level once, top to bottom, 32 rows
+// at most.
+TEST(ParamMipmapTest, BandsWriteTheSameFileAsWholeLevels) {
+  const fs::path whole = TestDir() / "whole";
+  const fs::path banded = TestDir() / "banded";
+  fs::create_directories(whole);
+  fs::create_directories(banded);
+  for (const auto& [width, height, levels] :
+       {std::array{70, 81, 0}, std::array{33, 5, 0}, std::array{40, 65, 1}}) {
+    ParamMipmap mipmap = RandomMipmap(width, height, 4, width + height);
+    if (levels == 1) mipmap.levels.resize(1);
+    mipmap.metadata_json = R"({"kind": "test"})";
+    const std::string name = "p" + std::to_string(width) + ".exr";
+    WriteParamMipmap(mipmap, (whole / name).string());
+    std::vector<std::array<int, 3>> calls;
+    WriteParamMipmapBands(BandsOf(mipmap, &calls), (banded / name).string());
+    EXPECT_EQ(ReadFileToString((banded / name).string()),
+              ReadFileToString((whole / name).string()))
+        << name;
+    EXPECT_EQ(ReadFileToString((banded / name).string() + ".json"),
+              ReadFileToString((whole / name).string() + ".json"));
+    std::vector<std::array<int, 3>> expected;
+    for (size_t level = 0; level < mipmap.levels.size(); ++level) {
+      for (int y0 = 0; y0 < mipmap.levels[level].height; y0 += 32) {
+        expected.push_back({static_cast<int>(level), y0,
+                            std::min(32, mipmap.levels[level].height - y0)});
+      }
+    }
+    EXPECT_EQ(calls, expected) << name;
+  }
+}
+
+// A non-finite value in a band fails with its place in the level and
+// leaves the files as they were.
+TEST(ParamMipmapTest, BandsRefuseNonFiniteValues) {
+  const fs::path dir = TestDir();
+  const std::string path = (dir / "p.exr").string();
+  const ParamMipmap good = RandomMipmap(70, 80, 3, 4);
+  WriteParamMipmap(good, path);
+  const std::string before = ReadFileToString(path);
+  ParamMipmap bad = good;
+  bad.levels[1].data[2][35 * 35 + 3] = std::numeric_limits<float>::infinity();
+  std::vector<std::array<int, 3>> calls;
+  ExpectHas(ErrorOf([&] { WriteParamMipmapBands(BandsOf(bad, &calls), path); }),
+            {path, "not written",
+             "channel 'lut.0.B' at level 1, texel (3, 35) is infinite"});
+  EXPECT_EQ(ReadFileToString(path), before);
+  EXPECT_EQ(CountEntries(dir), 2);  // No temporary files left.
 }
 
 TEST(ParamMipmapTest, NotAMipmappedExr) {
