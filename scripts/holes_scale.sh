@@ -12,7 +12,7 @@
 # masks and outputs; a temporary folder, removed at the end, by default).
 # Needs GNU time (apt-get install time) and oiiotool (openimageio-tools);
 # about 1 GB of memory and 0.5 GB of disk at 4096^2 (9 GB of memory with
-# clothfit 0.9's clothfit-full as the other).
+# a clothfit-full from before commit c735b1a as the other).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 CURRENT="${BUILD_DIR:-build}/apps/clothfit-full"
