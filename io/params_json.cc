@@ -105,6 +105,29 @@ ClothThread ReadClothThread(const json& object, const std::string& file,
   return th;
 }
 
+// The energy bound's tables (models/energy_bound.h) under "energy_bound":
+// {"light": [...], "view": [...]}; null when the file has none (the
+// paper's model).
+std::shared_ptr<const EnergyBound> ReadEnergyBound(ObjectReader& r,
+                                                   const std::string& file) {
+  if (!r.Has("energy_bound")) return nullptr;
+  ObjectReader b(r.Get("energy_bound"), file, "energy_bound");
+  auto bound = std::make_shared<EnergyBound>();
+  bound->light = b.NumberArray("light");
+  bound->view = b.NumberArray("view");
+  b.Finish();
+  const std::string e = ValidateEnergyBound(*bound);
+  if (!e.empty()) r.Fail("energy_bound", e);
+  return bound;
+}
+
+void WriteEnergyBound(const std::shared_ptr<const EnergyBound>& bound,
+                      json* j) {
+  if (bound) {
+    (*j)["energy_bound"] = {{"light", bound->light}, {"view", bound->view}};
+  }
+}
+
 // Like json::dump(2), but arrays of scalars stay on one line.
 void AppendPretty(const json& j, int indent, std::string* out) {
   const std::string pad(indent + 2, ' ');
@@ -152,6 +175,7 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
   if (model == "thread") {
     ThreadParams p = ReadParamKeys<ThreadParams>(r);
     if (r.Has(kModelScale.name)) p.scale = r.Number(kModelScale.name);
+    p.energy_bound = ReadEnergyBound(r, name);
     const std::string e = ValidateModel(p);
     if (!e.empty()) FailValidation(name, e);
     out.params = p;
@@ -170,6 +194,7 @@ ParamFile ParseParamFile(const std::string& text, const std::string& name) {
     }
     if (r.Has(kClothDiffuse.name)) c.diffuse = r.Rgb(kClothDiffuse.name);
     if (r.Has(kModelScale.name)) c.scale = r.Number(kModelScale.name);
+    c.energy_bound = ReadEnergyBound(r, name);
     const std::string e = ValidateClothParams(c);
     if (!e.empty()) FailValidation(name, e);
     out.params = c;
@@ -287,6 +312,7 @@ std::string FormatParamFile(const ParamFile& file) {
   if (const auto* p = std::get_if<ThreadParams>(&file.params)) {
     WriteParamKeys(*p, &j);
     if (p->scale != 1.0) j[kModelScale.name] = p->scale;
+    WriteEnergyBound(p->energy_bound, &j);
   } else if (const auto* m = std::get_if<LafortuneModel>(&file.params)) {
     j[kLafortuneDiffuse.name] = rgb(m->params.diffuse);
     json lobes = json::array();
@@ -346,6 +372,7 @@ std::string FormatParamFile(const ParamFile& file) {
     if (c.rotation_deg != 0.0) j[kClothRotation.name] = c.rotation_deg;
     if (c.diffuse != glm::dvec3(0.0)) j[kClothDiffuse.name] = rgb(c.diffuse);
     if (c.scale != 1.0) j[kModelScale.name] = c.scale;
+    WriteEnergyBound(c.energy_bound, &j);
   }
   if (!file.fit_json.empty()) j["fit"] = json::parse(file.fit_json);
   std::string out;

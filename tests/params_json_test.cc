@@ -290,6 +290,48 @@ TEST(ParamsJsonTest, ScaleOfThreadAndClothIsOptionalKeptAndValidated) {
               {"threads[1].scale", "unknown key"});
 }
 
+// The energy bound's tables: absent is the paper's model when parsed (and
+// then not written); given, kept exactly through a write and a read; sizes,
+// signs and unknown keys refused by name.
+TEST(ParamsJsonTest, EnergyBoundIsOptionalKeptExactlyAndValidated) {
+  const ParamFile plain = ParseParamFile(ThreadFile(), kFileName);
+  EXPECT_EQ(std::get<ThreadParams>(plain.params).energy_bound, nullptr);
+  EXPECT_EQ(FormatParamFile(plain).find("energy_bound"), std::string::npos);
+  const std::string tables =
+      ", \"energy_bound\": {\"light\": [0.1, 0.30000000000000004, 1.5], "
+      "\"view\": [2.0, 1.25, 0.9]}";
+  for (const std::string& text :
+       {ThreadFile(ThreadKeys(), tables),
+        ClothFile(ClothThreadJson("u", "0.33"), ClothThreadJson("v", "0.33"),
+                  tables)}) {
+    const ParamFile file = ParseParamFile(text, kFileName);
+    const EnergyBound* b =
+        std::holds_alternative<ThreadParams>(file.params)
+            ? std::get<ThreadParams>(file.params).energy_bound.get()
+            : std::get<ClothParams>(file.params).energy_bound.get();
+    ASSERT_NE(b, nullptr);
+    EXPECT_EQ(b->light, std::vector<double>({0.1, 0.30000000000000004, 1.5}));
+    EXPECT_EQ(b->view, std::vector<double>({2.0, 1.25, 0.9}));
+    const std::string written = FormatParamFile(file);
+    EXPECT_EQ(FormatParamFile(ParseParamFile(written, kFileName)), written);
+  }
+  ExpectError(ThreadFile(ThreadKeys(),
+                         ", \"energy_bound\": {\"light\": [1, 2], "
+                         "\"view\": [1]}"),
+              {"energy_bound", "same number"});
+  ExpectError(ThreadFile(ThreadKeys(),
+                         ", \"energy_bound\": {\"light\": [1, -2], "
+                         "\"view\": [1, 1]}"),
+              {"energy_bound", ">= 0"});
+  ExpectError(
+      ThreadFile(ThreadKeys(), ", \"energy_bound\": {\"light\": [1, 2]}"),
+      {"energy_bound.view", "missing"});
+  ExpectError(ThreadFile(ThreadKeys(),
+                         ", \"energy_bound\": {\"light\": [1, 2], "
+                         "\"view\": [1, 1], \"side\": 1}"),
+              {"energy_bound.side", "unknown key"});
+}
+
 // The weave's optional freedoms: absent is the paper's model (0) and then
 // not written; given, kept exactly; diffuse as one number or three;
 // validated by name.
