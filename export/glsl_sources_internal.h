@@ -11,6 +11,7 @@ extern const char* const kLafortune;
 extern const char* const kSlab;
 extern const char* const kHoles;
 extern const char* const kLafortuneMap;
+extern const char* const kEnergyBound;
 
 }  // namespace glsl_sources
 }  // namespace clothfit
