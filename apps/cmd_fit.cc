@@ -330,6 +330,9 @@ int RunFit(int argc, char** argv) {
   args.Flag("fit-scale",
             "data on an arbitrary scale: also fit a factor on the model "
             "(reported as 'scale')");
+  args.Flag("energy-bound",
+            "thread, cloth: fit and write the bounded model, which conserves "
+            "energy on both sides (docs/fitting.md)");
   args.Flag("per-channel-tau", "slab: one tau per channel (r, g, b)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   args.Option("folds", "K",
@@ -341,6 +344,9 @@ int RunFit(int argc, char** argv) {
     if (args.Has(cloth_only) && model != "cloth") {
       args.Fail(std::string("--") + cloth_only + " is for the cloth model");
     }
+  }
+  if (args.Has("energy-bound") && model != "thread" && model != "cloth") {
+    args.Fail("--energy-bound is for the thread and cloth models");
   }
   CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args, true);
@@ -372,6 +378,7 @@ int RunFit(int argc, char** argv) {
     options.fix = fix;
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
+    options.energy_bound = args.Has("energy-bound");
     if (starts > 0) options.solve_starts = starts;
     if (args.Has("preset"))
       args.Fail("--preset gives cloth parameters; use --init");
@@ -409,6 +416,7 @@ int RunFit(int argc, char** argv) {
     options.fix = fix;
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
+    options.energy_bound = args.Has("energy-bound");
     options.also_free = ListOption(args, "also-free");
     if (args.Has("design-points")) {
       const long n = args.GetInt("design-points");

@@ -7,7 +7,7 @@
 
 #include "fitting/cloth_search.h"
 #include "fitting/cloth_weave_internal.h"
-#include "fitting/energy.h"
+#include "fitting/energy_bound_fit_internal.h"
 #include "fitting/least_squares.h"
 #include "fitting/model_residual_internal.h"
 #include "fitting/start_search.h"
@@ -134,37 +134,15 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
   return out;
 }
 
-}  // namespace
-
-ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
-                        const ClothFitOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();  // search + solves
-  RequireWeightedRows(table);
-  if (table.quantity == Quantity::kTransmittance) {
-    throw InputError(
-        "a cloth model predicts brdf or cosine_weighted values, "
-        "not transmittance");
-  }
-  if (init.threads.empty() || init.threads.size() > 3) {
-    throw InputError(
-        "cloth fit: the initial parameters need 1 to 3 threads, got " +
-        std::to_string(init.threads.size()));
-  }
-  // The cloth model is reflection only (docs/models.md): a row with the light
-  // or the view below the surface tells nothing about it. Such rows are left
-  // out and counted, not fitted as zeros.
-  const int not_reflection = CountNotReflection(table, "cloth");
-  if (not_reflection > 0) {
-    MeasurementTable reflection = table;
-    reflection.rows.erase(
-        std::remove_if(
-            reflection.rows.begin(), reflection.rows.end(),
-            [](const TableRow& row) { return !IsReflectionRow(row); }),
-        reflection.rows.end());
-    ClothFitResult result = FitCloth(reflection, init, options);
-    result.report.rows_not_used = not_reflection;
-    return result;
-  }
+// One fit of the model through the rows' bound factors (null: the paper's
+// model): from the start search, or from the solver vector `*refit_x`
+// alone. The solver vector of the result goes to `*x_out` (when not null).
+ClothFitResult FitClothThrough(const MeasurementTable& table,
+                               const ClothParams& init,
+                               const ClothFitOptions& options,
+                               const std::vector<double>* bound_factor,
+                               const std::vector<double>* refit_x,
+                               std::vector<double>* x_out) {
   const size_t n = init.threads.size();
   auto weave = std::make_shared<Weave>(init);
   const ClothVector& v = weave->vector;
@@ -239,6 +217,7 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   evaluator->table = &table;
   evaluator->weave = weave;
   evaluator->samples.resize(table.rows.size());
+  evaluator->bound_factor = bound_factor;
   if (geometry_fixed) {
     for (size_t i = 0; i < table.rows.size(); ++i) {
       evaluator->samples[i] = std::make_shared<const RowSamples>(
@@ -270,10 +249,14 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
   search.init = CoverageToStick(*weave, ClothToVector(init));
   search.search_widths = options.multi_start;
   search.design_points = options.multi_start ? options.design_points : 0;
-  ClothStarts starts =
-      SearchClothStarts(search, std::max(1, options.solve_starts));
+  ClothStarts starts;
+  if (refit_x) {
+    starts.starts = {*refit_x};
+  } else {
+    starts = SearchClothStarts(search, std::max(1, options.solve_starts));
+  }
   if (starts.design_points > 1) lsq.stop_after_hits = options.stop_after_hits;
-  if (!geometry_fixed) {
+  if (!geometry_fixed && !refit_x) {
     starts.starts = RefineAtFixedGeometry(sample, *weave, lsq.specs, options,
                                           starts.starts);
   }
@@ -306,11 +289,75 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& init,
     ReportChannelsFollowRed("albedo", &result.report);
     ReportChannelsFollowRed("diffuse", &result.report);
   }
-  if (options.conserve_energy) {
+  if (options.conserve_energy && !options.energy_bound && !bound_factor) {
     std::vector<double> model, measured;
     PredictAll(lsq, x, &model, &measured, nullptr);
     ConserveEnergyByScale(ModelParams(result.params), model, measured,
                           &result.params.scale, &result.report);
+  }
+  if (x_out) *x_out = x;
+  return result;
+}
+
+}  // namespace
+
+ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
+                        const ClothFitOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();  // search + solves
+  // The search and the solves fit the paper's model (the bound, if any, is
+  // the fit's to find): an init's bound is dropped.
+  ClothParams init = given;
+  init.energy_bound = nullptr;
+  RequireWeightedRows(table);
+  if (table.quantity == Quantity::kTransmittance) {
+    throw InputError(
+        "a cloth model predicts brdf or cosine_weighted values, "
+        "not transmittance");
+  }
+  if (init.threads.empty() || init.threads.size() > 3) {
+    throw InputError(
+        "cloth fit: the initial parameters need 1 to 3 threads, got " +
+        std::to_string(init.threads.size()));
+  }
+  // The cloth model is reflection only (docs/models.md): a row with the light
+  // or the view below the surface tells nothing about it. Such rows are left
+  // out and counted, not fitted as zeros.
+  const int not_reflection = CountNotReflection(table, "cloth");
+  if (not_reflection > 0) {
+    MeasurementTable reflection = table;
+    reflection.rows.erase(
+        std::remove_if(
+            reflection.rows.begin(), reflection.rows.end(),
+            [](const TableRow& row) { return !IsReflectionRow(row); }),
+        reflection.rows.end());
+    ClothFitResult result = FitCloth(reflection, given, options);
+    result.report.rows_not_used = not_reflection;
+    return result;
+  }
+  ClothFitResult result;
+  if (options.energy_bound) {
+    MeasurementTable first_storage;
+    std::vector<double> x;
+    result = FitClothThrough(FirstFitRows(table, &first_storage), init, options,
+                             nullptr, nullptr, &x);
+    result.report.rows = static_cast<int>(table.rows.size());
+    SettleEnergyBound<ClothParams>(
+        table, options.solver.max_iterations,
+        [&](const std::vector<double>& factors, const ClothParams&,
+            int max_iterations) {
+          ClothFitOptions refit = options;
+          refit.solver.max_iterations = max_iterations;
+          return FitClothThrough(table, init, refit, &factors, &x, &x);
+        },
+        &result);
+  } else {
+    // The init's bound held: its factors fixed, and carried by the result.
+    const std::vector<double> factors =
+        EnergyBoundFactors(table, given.energy_bound.get());
+    result = FitClothThrough(table, init, options,
+                             given.energy_bound ? &factors : nullptr, nullptr,
+                             nullptr);
+    result.params.energy_bound = given.energy_bound;
   }
   result.report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

@@ -157,18 +157,24 @@ struct ClothEvaluator {
   const MeasurementTable* table;
   std::shared_ptr<const Weave> weave;
   std::vector<std::shared_ptr<const RowSamples>> samples;  // per row, or null
+  // The rows' energy bound factors (fitting/energy_bound_fit_internal.h),
+  // or null: the paper's model.
+  const std::vector<double>* bound_factor = nullptr;
 
   template <typename T>
   Vec3<T> operator()(const T* const* blocks, size_t i) const {
     const TableRow& row = table->rows[i];
+    const T factor(bound_factor ? (*bound_factor)[i] : 1.0);
     if (samples[i]) {
       return ConvertQuantity(
-          ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false),
-                              *samples[i], row.wi.z),
-          Quantity::kCosineWeighted, table->quantity, row.wi.z);
+                 ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false),
+                                     *samples[i], row.wi.z),
+                 Quantity::kCosineWeighted, table->quantity, row.wi.z) *
+             factor;
     }
     return Value(ClothFromBlocks(*weave, blocks, true), row.wi, row.wo,
-                 table->quantity);
+                 table->quantity) *
+           factor;
   }
 };
 

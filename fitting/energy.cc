@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/albedo.h"
+#include "models/prepared.h"
 
 namespace clothfit {
 namespace {
@@ -56,10 +57,25 @@ EnergyCheck ModelEnergy(const ModelParams& params) {
   }
   EnergyCheck out;
   const HemisphereQuadrature q = MakeHemisphereQuadrature(36);
+  const auto* t = std::get_if<ThreadParams>(&params);
+  const auto* c = std::get_if<ClothParams>(&params);
+  const bool both = (t && t->energy_bound) || (c && c->energy_bound);
   for (const glm::dvec3& d : FurnaceDirections(8)) {
     Consider(ModelViewAlbedo(params, d, q), d, &out);
+    if (both) Consider(ModelLightAlbedo(params, d, q), d, &out);
   }
   return out;
+}
+
+glm::dvec3 ModelLightAlbedo(const ModelParams& params, const glm::dvec3& wi,
+                            const HemisphereQuadrature& q) {
+  const PreparedModel<double> prepared = PrepareModel<double>(params);
+  glm::dvec3 a(0.0);
+  for (size_t i = 0; i < q.w.size(); ++i) {
+    a += q.weight[i] * q.w[i].z *
+         EvaluatePrepared(prepared, wi, q.w[i], Quantity::kBrdf);
+  }
+  return a;
 }
 
 glm::dvec3 ModelViewAlbedo(const ModelParams& params, const glm::dvec3& wo,
@@ -67,8 +83,9 @@ glm::dvec3 ModelViewAlbedo(const ModelParams& params, const glm::dvec3& wo,
   if (const auto* m = std::get_if<LafortuneModel>(&params)) {
     return LafortuneViewAlbedo(*m, wo);
   }
+  const PreparedModel<double> prepared = PrepareModel<double>(params);
   auto rho = [&](const glm::dvec3& wi, const glm::dvec3& v) {
-    return Evaluate(params, wi, v, Quantity::kCosineWeighted);
+    return EvaluatePrepared(prepared, wi, v, Quantity::kCosineWeighted);
   };
   return QuadratureViewAlbedo(rho, wo, q);
 }

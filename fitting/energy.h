@@ -22,8 +22,11 @@ struct EnergyCheck {
 // FurnaceDirections(12) and at the lookup table's views.
 EnergyCheck LafortuneEnergy(const LafortuneModel& m);
 
-// Any model by quadrature (36 rings) at FurnaceDirections(8); a Lafortune
-// model by LafortuneEnergy.
+// Any model by quadrature (36 rings) at FurnaceDirections(8); a thread or
+// cloth with an energy bound (models/bounded.h) on both sides
+// (ModelViewAlbedo and ModelLightAlbedo: the paper's models are not
+// reciprocal), without one on the view side; a Lafortune model by
+// LafortuneEnergy.
 EnergyCheck ModelEnergy(const ModelParams& p);
 
 // The directional albedo a(wo) of any model (models/albedo.h), per
@@ -33,6 +36,11 @@ EnergyCheck ModelEnergy(const ModelParams& p);
 // the furnace check).
 glm::dvec3 ModelViewAlbedo(const ModelParams& p, const glm::dvec3& wo,
                            const HemisphereQuadrature& q);
+
+// The light-side albedo, the integral of f(wi, wo) wo.z over wo, by the
+// quadrature q, per channel: what a surface lit from wi reflects in all.
+glm::dvec3 ModelLightAlbedo(const ModelParams& p, const glm::dvec3& wi,
+                            const HemisphereQuadrature& q);
 
 // Lowers each stored view's T (per channel) to 1 / the bracket's albedo
 // at that view where T times it exceeds 1 (LafortuneViewAlbedo at the

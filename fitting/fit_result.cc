@@ -133,6 +133,7 @@ std::string FitReportJson(const FitReport& r) {
     energy["max_albedo"] = r.max_albedo;
     energy["at"] = r.max_albedo_at;
     energy["scaled_by"] = r.energy_scale;
+    if (!r.energy_bound.empty()) energy["bound"] = r.energy_bound;
     j["energy"] = energy;
   }
   nlohmann::ordered_json values = nlohmann::ordered_json::object();
@@ -231,6 +232,8 @@ std::string FitReportText(const FitReport& r,
       out << ": above 1, the model does not conserve energy there";
     }
     out << "\n";
+    if (!r.energy_bound.empty())
+      out << "energy bound: " << r.energy_bound << "\n";
   }
   if (r.rows_not_used > 0) {
     std::snprintf(line, sizeof(line),

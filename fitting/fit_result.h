@@ -21,7 +21,9 @@ inline constexpr int kMaxSolverIterations = 100000;
 inline constexpr int kMaxSolverThreads = 256;
 
 struct SolverOptions {
-  int max_iterations = 200;  // [1, kMaxSolverIterations] (per solve)
+  // [1, kMaxSolverIterations]: per solve; a thread or cloth fit's refits
+  // for the energy bound share it (fitting/energy_bound_fit_internal.h).
+  int max_iterations = 200;
   Loss loss = Loss::kNone;
   double loss_scale = 1.0;  // > 0, in units of sigma (normalised residuals)
   // [0, kMaxSolverThreads]; 0: every core. The least-squares fits evaluate
@@ -125,6 +127,10 @@ struct FitReport {
   double max_albedo = -1.0;
   std::string max_albedo_at;  // DescribeEnergy
   double energy_scale = 1.0;
+  // A thread or cloth fit of the bounded model (fitting/
+  // energy_bound_fit_internal.h): what the bound did to the table's rows
+  // and how many refits it took; empty for other fits.
+  std::string energy_bound;
   std::vector<ParameterReport> parameters;
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".

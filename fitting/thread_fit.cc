@@ -4,6 +4,7 @@
 #include <chrono>
 #include <memory>
 
+#include "fitting/energy_bound_fit_internal.h"
 #include "fitting/least_squares.h"
 #include "fitting/model_residual_internal.h"
 #include "fitting/start_search.h"
@@ -15,29 +16,63 @@ namespace {
 
 // The thread's value at row i of a thread table: block 0 holds the thread
 // parameters (models/params.h ToArray order).
+// Times the row's energy bound factor, when the fit has them.
 struct ThreadEvaluator {
   const MeasurementTable* table;
+  const std::vector<double>* bound_factor;
 
   template <typename T>
   Vec3<T> operator()(const T* const* blocks, size_t i) const {
     ThreadParamsT<T> p;
     FromArray(blocks[0], &p);
     const TableRow& row = table->rows[i];
-    return Value(p, row.wi, row.wo, table->quantity);
+    const Vec3<T> v = Value(p, row.wi, row.wo, table->quantity);
+    return bound_factor ? v * T((*bound_factor)[i]) : v;
   }
 };
 
-}  // namespace
-
-ThreadFitResult FitThread(const MeasurementTable& table,
-                          const ThreadFitOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();  // search + solves
-  RequireWeightedRows(table);
-  if (table.quantity == Quantity::kTransmittance) {
-    throw InputError(
-        "a thread model predicts brdf or cosine_weighted "
-        "values, not transmittance");
+// Starts: a grid search over the widths (and eta) with the linear
+// parameters (albedo, kd, scale) solved in closed form; the init's values
+// join the grid, fixed entries keep them (fitting/start_search.h). The
+// search sees the rows the starts are solved on.
+std::vector<std::vector<double>> SearchThreadStarts(
+    const MeasurementTable& table, const ThreadFitOptions& options,
+    const Weighting& weighting, const std::vector<ParameterSpec>& specs) {
+  MeasurementTable sample_storage;
+  const MeasurementTable& sample = SearchTable(table, &sample_storage);
+  StartSearchProblem search;
+  search.table = &sample;
+  search.weighting = &weighting;
+  search.init = {options.init ? *options.init : ThreadParams()};
+  search.contribution = [&](size_t, const ThreadParams& p) {
+    RowValues v(sample.rows.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+      v[i] = Value(p, sample.rows[i].wi, sample.rows[i].wo, sample.quantity);
+    }
+    return v;
+  };
+  search.kd_free = {specs[1].free};
+  search.gamma_s_free = {specs[2].free};
+  search.gamma_v_free = {specs[3].free};
+  search.albedo_free = {specs[4].free || specs[5].free || specs[6].free};
+  search.fit_scale = options.fit_scale;
+  std::vector<std::vector<double>> starts;
+  for (const StartPoint& point :
+       SearchStarts(search, std::max(1, options.solve_starts))) {
+    std::vector<double> x(kThreadFlatSize + 1);
+    ToArray(point.threads[0], x.data());
+    x[kThreadFlatSize] = point.scale;
+    starts.push_back(x);
   }
+  return starts;
+}
+
+// One fit of the model through the rows' bound factors (null: the paper's
+// model): from the start search, or from `refit_from` alone.
+ThreadFitResult FitThreadThrough(const MeasurementTable& table,
+                                 const ThreadFitOptions& options,
+                                 const std::vector<double>* bound_factor,
+                                 const ThreadParams* refit_from) {
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(ThreadParams());
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -55,40 +90,17 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     blocks.used.push_back(1);
     blocks.scale = 1;
   }
-  SetModelResiduals(
-      std::make_shared<const ThreadEvaluator>(ThreadEvaluator{&table}),
-      TableFitRows(table, weighting), blocks, &lsq);
-
-  // Starts: a grid search over the widths (and eta) with the linear
-  // parameters (albedo, kd, scale) solved in closed form; the init's values
-  // join the grid, fixed entries keep them (fitting/start_search.h).
-  // The search sees the rows the starts are solved on.
-  MeasurementTable sample_storage;
-  const MeasurementTable& sample = SearchTable(table, &sample_storage);
-  StartSearchProblem search;
-  search.table = &sample;
-  search.weighting = &weighting;
-  search.init = {options.init ? *options.init : ThreadParams()};
-  search.contribution = [&](size_t, const ThreadParams& p) {
-    RowValues v(sample.rows.size());
-    for (size_t i = 0; i < v.size(); ++i) {
-      v[i] = Value(p, sample.rows[i].wi, sample.rows[i].wo, sample.quantity);
-    }
-    return v;
-  };
-  search.kd_free = {lsq.specs[1].free};
-  search.gamma_s_free = {lsq.specs[2].free};
-  search.gamma_v_free = {lsq.specs[3].free};
-  search.albedo_free = {lsq.specs[4].free || lsq.specs[5].free ||
-                        lsq.specs[6].free};
-  search.fit_scale = options.fit_scale;
+  SetModelResiduals(std::make_shared<const ThreadEvaluator>(
+                        ThreadEvaluator{&table, bound_factor}),
+                    TableFitRows(table, weighting), blocks, &lsq);
   std::vector<std::vector<double>> starts;
-  for (const StartPoint& point :
-       SearchStarts(search, std::max(1, options.solve_starts))) {
+  if (refit_from) {
     std::vector<double> x(kThreadFlatSize + 1);
-    ToArray(point.threads[0], x.data());
-    x[kThreadFlatSize] = point.scale;
+    ToArray(*refit_from, x.data());
+    x[kThreadFlatSize] = refit_from->scale;
     starts.push_back(x);
+  } else {
+    starts = SearchThreadStarts(table, options, weighting, lsq.specs);
   }
 
   ThreadFitResult result;
@@ -101,6 +113,47 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   if (table.channels == 1) {  // one channel: one albedo
     result.params.albedo =
         OneChannelRgb("albedo", result.params.albedo, &result.report);
+  }
+  return result;
+}
+
+}  // namespace
+
+ThreadFitResult FitThread(const MeasurementTable& table,
+                          const ThreadFitOptions& given) {
+  // The search and the solves fit the paper's model (the bound, if any, is
+  // the fit's to find): an init's bound is dropped.
+  ThreadFitOptions options = given;
+  if (options.init) options.init->energy_bound = nullptr;
+  const auto t0 = std::chrono::steady_clock::now();  // search + solves
+  RequireWeightedRows(table);
+  if (table.quantity == Quantity::kTransmittance) {
+    throw InputError(
+        "a thread model predicts brdf or cosine_weighted "
+        "values, not transmittance");
+  }
+  ThreadFitResult result;
+  if (options.energy_bound) {
+    MeasurementTable first_storage;
+    result = FitThreadThrough(FirstFitRows(table, &first_storage), options,
+                              nullptr, nullptr);
+    result.report.rows = static_cast<int>(table.rows.size());
+    SettleEnergyBound<ThreadParams>(
+        table, options.solver.max_iterations,
+        [&](const std::vector<double>& factors, const ThreadParams& from,
+            int max_iterations) {
+          ThreadFitOptions refit = options;
+          refit.solver.max_iterations = max_iterations;
+          return FitThreadThrough(table, refit, &factors, &from);
+        },
+        &result);
+  } else {
+    // The init's bound held: its factors fixed, and carried by the result.
+    const auto bound = given.init ? given.init->energy_bound : nullptr;
+    const std::vector<double> factors = EnergyBoundFactors(table, bound.get());
+    result =
+        FitThreadThrough(table, options, bound ? &factors : nullptr, nullptr);
+    result.params.energy_bound = bound;
   }
   result.report.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)

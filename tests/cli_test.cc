@@ -26,6 +26,7 @@
 #include "io/param_mipmap.h"
 #include "io/params_json.h"
 #include "io/table.h"
+#include "models/bounded.h"
 #include "models/evaluate.h"
 #include "models/presets.h"
 #include "tests/cli_test_util.h"
@@ -531,6 +532,19 @@ TEST(CliTest, SynthRejectsZeroRows) {
 // clothfit fit: a synthetic table from a thread file, fitted from the
 // default start; the result file holds the recovered parameters and a
 // "fit" object with standard deviations.
+// RMS(model - data) / RMS(data) over the rows of two tables of the same
+// directions.
+double RelativeRms(const MeasurementTable& model,
+                   const MeasurementTable& data) {
+  double se = 0.0, ss = 0.0;
+  for (size_t i = 0; i < model.rows.size(); ++i) {
+    const glm::dvec3 d = model.rows[i].value - data.rows[i].value;
+    se += glm::dot(d, d);
+    ss += glm::dot(data.rows[i].value, data.rows[i].value);
+  }
+  return std::sqrt(se / ss);
+}
+
 fs::path DirWithThreadTable() {
   const fs::path dir = TestDir();
   WriteText(dir / "truth.json",
@@ -543,6 +557,51 @@ fs::path DirWithThreadTable() {
                         "--out", (dir / "T.csv").string()});
   EXPECT_EQ(synth.status, 0) << Describe(synth);
   return dir;
+}
+
+// fit --energy-bound: a table drawn from a bounded thread (a parameter file
+// with its energy_bound) is fitted by the bounded model, the written file
+// carries its bound, and eval of that file reproduces the data the fit saw
+// (1 % noise). --energy-bound is refused for other models.
+TEST(CliTest, FitEnergyBoundWritesTheBoundedModelItFitted) {
+  const fs::path dir = TestDir();
+  ThreadParams truth;
+  truth.eta = 1.5;
+  truth.kd = 0.2;
+  truth.gamma_s_deg = 6.0;
+  truth.gamma_v_deg = 14.0;
+  truth.albedo = glm::dvec3(0.3, 0.2, 0.1);
+  truth.energy_bound = EnergyBoundOf(truth);
+  ASSERT_NE(truth.energy_bound, nullptr);
+  WriteParamFile(ParamFile{truth, ""}, (dir / "truth.json").string());
+  const std::string data = (dir / "T.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"synth", "--params",
+                              (dir / "truth.json").string(), "--rows", "1500",
+                              "--noise", "0.01", "--seed", "4", "--out", data})
+                .status,
+            0);
+  const std::string out = (dir / "fit.json").string();
+  const RunResult r = RunClothfit(dir, {"fit", "--model", "thread", "--data",
+                                        data, "--energy-bound", "--out", out});
+  ASSERT_EQ(r.status, 0) << Describe(r);
+  EXPECT_NE(r.out.find("energy bound: lowers"), std::string::npos) << r.out;
+  const ThreadParams fit = std::get<ThreadParams>(ReadParamFile(out).params);
+  ASSERT_NE(fit.energy_bound, nullptr);
+  EXPECT_NEAR(fit.eta, 1.5, 0.05 * 1.5);
+  EXPECT_NEAR(fit.gamma_v_deg, 14.0, 0.05 * 14.0);
+  const std::string evaluated = (dir / "E.csv").string();
+  ASSERT_EQ(RunClothfit(dir, {"eval", "--params", out, "--dirs", data, "--out",
+                              evaluated})
+                .status,
+            0);
+  const MeasurementTable table = ReadTable(data).table;
+  const MeasurementTable back = ReadTable(evaluated).table;
+  ASSERT_EQ(back.rows.size(), table.rows.size());
+  EXPECT_LT(RelativeRms(back, table), 0.02);
+  ExpectBadInput(dir,
+                 {"fit", "--model", "slab", "--data", data, "--energy-bound",
+                  "--out", (dir / "slab.json").string()},
+                 {"--energy-bound"});
 }
 
 TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
@@ -663,14 +722,8 @@ TEST(CliTest, FitScaleIsKeptAndEvalReproducesTheScaledData) {
   ASSERT_EQ(eval.status, 0) << Describe(eval);
   const MeasurementTable back = ReadTable(evaluated).table;
   ASSERT_EQ(back.rows.size(), table.rows.size());
-  double se = 0.0, ss = 0.0;
-  for (size_t i = 0; i < back.rows.size(); ++i) {
-    const glm::dvec3 d = back.rows[i].value - table.rows[i].value;
-    se += glm::dot(d, d);
-    ss += glm::dot(table.rows[i].value, table.rows[i].value);
-  }
   // The data's own noise is 1 %; 0.3's eval was 3.3x off.
-  EXPECT_LT(std::sqrt(se / ss), 0.03);
+  EXPECT_LT(RelativeRms(back, table), 0.03);
 }
 
 // A table without a sigma column is fitted with relative noise of an
