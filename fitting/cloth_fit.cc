@@ -353,7 +353,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const std::vector<double> factors =
-        EnergyBoundFactors(table, given.energy_bound.get());
+        given.energy_bound ? EnergyBoundFactors(table, given.energy_bound.get())
+                           : std::vector<double>();
     result = FitClothThrough(table, init, options,
                              given.energy_bound ? &factors : nullptr, nullptr,
                              nullptr);

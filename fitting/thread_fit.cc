@@ -150,7 +150,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const auto bound = given.init ? given.init->energy_bound : nullptr;
-    const std::vector<double> factors = EnergyBoundFactors(table, bound.get());
+    const std::vector<double> factors =
+        bound ? EnergyBoundFactors(table, bound.get()) : std::vector<double>();
     result =
         FitThreadThrough(table, options, bound ? &factors : nullptr, nullptr);
     result.params.energy_bound = bound;
