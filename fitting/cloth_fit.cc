@@ -135,14 +135,16 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
 }
 
 // One fit of the model through the rows' bound factors (null: the paper's
-// model): from the start search, or from the solver vector `*refit_x`
-// alone. The solver vector of the result goes to `*x_out` (when not null).
+// model): from the start search, from the solver vector `*refit_x` alone,
+// or (`search_too`) from `*refit_x` and the search's starts. The solver
+// vector of the result goes to `*x_out` (when not null).
 ClothFitResult FitClothThrough(const MeasurementTable& table,
                                const ClothParams& init,
                                const ClothFitOptions& options,
                                const std::vector<double>* bound_factor,
                                const std::vector<double>* refit_x,
-                               std::vector<double>* x_out) {
+                               std::vector<double>* x_out,
+                               bool search_too = false) {
   const size_t n = init.threads.size();
   auto weave = std::make_shared<Weave>(init);
   const ClothVector& v = weave->vector;
@@ -247,19 +249,20 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
   search.weave = weave.get();
   search.specs = &lsq.specs;
   search.init = CoverageToStick(*weave, ClothToVector(init));
+  search.row_factor = SearchRowValues(table.rows.size(), bound_factor);
   search.search_widths = options.multi_start;
   search.design_points = options.multi_start ? options.design_points : 0;
   ClothStarts starts;
-  if (refit_x) {
-    starts.starts = {*refit_x};
-  } else {
+  const bool searched = !refit_x || search_too;
+  if (searched) {
     starts = SearchClothStarts(search, std::max(1, options.solve_starts));
   }
   if (starts.design_points > 1) lsq.stop_after_hits = options.stop_after_hits;
-  if (!geometry_fixed && !refit_x) {
+  if (!geometry_fixed && searched) {
     starts.starts = RefineAtFixedGeometry(sample, *weave, lsq.specs, options,
                                           starts.starts);
   }
+  if (refit_x) starts.starts.insert(starts.starts.begin(), *refit_x);
 
   ClothFitResult result;
   std::vector<double> x = starts.starts.front();
@@ -342,12 +345,10 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
                              nullptr, nullptr, &x);
     result.report.rows = static_cast<int>(table.rows.size());
     SettleEnergyBound<ClothParams>(
-        table, options.solver.max_iterations,
+        table,
         [&](const std::vector<double>& factors, const ClothParams&,
-            int max_iterations) {
-          ClothFitOptions refit = options;
-          refit.solver.max_iterations = max_iterations;
-          return FitClothThrough(table, init, refit, &factors, &x, &x);
+            bool search) {
+          return FitClothThrough(table, init, options, &factors, &x, &x, search);
         },
         &result);
   } else {

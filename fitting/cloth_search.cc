@@ -61,7 +61,8 @@ std::vector<StartPoint> SearchGeometry(const ClothStartProblem& problem,
   const ClothParams cloth = ClothFromVector(weave, ReportedVector(weave, x));
   const size_t n = cloth.threads.size();
   const size_t rows = table.rows.size();
-  // Tangent samples (with their Fresnel terms) and 1 / Q of every row.
+  // Tangent samples (with their Fresnel terms) and 1 / Q of every row
+  // (times its factor).
   const std::vector<bool> eta_fixed(n, true);
   std::vector<RowSamples> samples(rows);
   std::vector<double> inv_q(rows, 0.0);
@@ -76,6 +77,7 @@ std::vector<StartPoint> SearchGeometry(const ClothStartProblem& problem,
     }
     const double q = normalisation.Q(table.rows[i].wi.z);
     inv_q[i] = q > 0.0 ? 1.0 / q : 0.0;
+    if (!problem.row_factor.empty()) inv_q[i] *= problem.row_factor[i];
   }
   StartSearchProblem search;
   search.table = &table;
@@ -117,6 +119,9 @@ std::vector<StartPoint> SearchGeometry(const ClothStartProblem& problem,
               ? ConvertQuantity(glm::dvec3(z / kPi), Quantity::kCosineWeighted,
                                 table.quantity, z)
               : glm::dvec3(0.0);
+      if (!problem.row_factor.empty()) {
+        search.diffuse_basis[i] *= problem.row_factor[i];
+      }
     }
     search.diffuse_free = diffuse_free;
     search.init_diffuse = cloth.diffuse;

@@ -24,6 +24,9 @@ struct ClothStartProblem {
   const Weave* weave = nullptr;
   const std::vector<ParameterSpec>* specs = nullptr;  // which are free
   std::vector<double> init;   // a solver vector (stick coordinates)
+  // Per row of *table, a constant factor on the model (the energy bound's,
+  // fitting/energy_bound_fit_internal.h); empty: 1.
+  std::vector<double> row_factor;
   bool search_widths = true;  // false: the widths stay at init
   // Points of the design besides the initial one (used only when a
   // geometry entry or eta is free).

@@ -88,8 +88,7 @@ std::vector<double> AndersonFactors(
 }
 
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
-                       bool settled, const std::string& why,
-                       FitReport* report) {
+                       bool settled, FitReport* report) {
   int lowered = 0;
   double most = 0.0;
   for (double f : factors) {
@@ -104,7 +103,8 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
   if (settled) return;
   report->converged = false;
   std::string msg =
-      "the energy bound did not settle " + why +
+      "the energy bound did not settle in " + std::to_string(refits) +
+      " refits" +
       " (data brighter than a physical surface? check the table's "
       "calibration); the errors are the last refit's";
   if (!report->message.empty()) msg += "; " + report->message;

@@ -63,31 +63,33 @@ double RelativeFactorChange(const std::vector<double>& g,
                             const std::vector<double>& x);
 
 // Records in the report what the bound did: how many rows it lowers and by
-// how much, the refits it took; when it did not settle, the fit is not
-// converged and the message says why (`why`: the refits ran out, or the
-// solver's iterations).
+// how much, the refits it took; when it did not settle within
+// kEnergyBoundRefits refits, the fit is not converged and the message says
+// so.
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
-                       bool settled, const std::string& why, FitReport* report);
+                       bool settled, FitReport* report);
 
 // The fixed point above, from `*fit` (the first fit, of FirstFitRows):
-// refit(factors, from, max_iterations) fits `table` through the rows'
-// factors from the parameters `from`. `max_iterations` caps the solver's
-// iterations over the first fit and all refits together. On return *fit
-// holds the last refit with its bound attached, and its report the
-// bound's effect, the iterations of all solves, the first fit's start
+// refit(factors, from, search) fits `table` through the rows' factors
+// from the parameters `from`, and (`search` true, the first refit) from
+// the start search too, done through the factors: the first fit's rows
+// may not tell a weak thread's parameters, and its basin need not be the
+// one of every row. Each solve has the solver's own iteration limit. On
+// return *fit holds the last refit with its bound attached, and its report
+// the bound's effect, the iterations of all solves, the starts of every
 // search and the furnace check.
 template <typename P>
-void SettleEnergyBound(const MeasurementTable& table, int max_iterations,
-                       const std::function<FitResult<P>(
-                           const std::vector<double>&, const P&, int)>& refit,
-                       FitResult<P>* fit) {
+void SettleEnergyBound(
+    const MeasurementTable& table,
+    const std::function<FitResult<P>(const std::vector<double>&, const P&,
+                                     bool)>& refit,
+    FitResult<P>* fit) {
   std::vector<std::vector<double>> xs, gs;
   std::shared_ptr<const EnergyBound> bound;
   bool settled = false;
   int refits = 0, iterations = fit->report.iterations;
-  const int starts = fit->report.starts;
-  const std::string search = fit->report.search;
-  std::string why;
+  int starts = fit->report.starts;
+  const std::string search = fit->report.search;  // the first fit's
   for (;;) {
     if (!fit->report.usable) return;
     bound = EnergyBoundOf(fit->params);
@@ -99,28 +101,21 @@ void SettleEnergyBound(const MeasurementTable& table, int max_iterations,
         break;
       }
     }
-    if (refits == kEnergyBoundRefits) {
-      why = "in " + std::to_string(refits) + " refits";
-      break;
-    }
-    if (iterations >= max_iterations) {
-      why = "within the solver's " + std::to_string(max_iterations) +
-            " iterations";
-      break;
-    }
+    if (refits == kEnergyBoundRefits) break;
     xs.push_back(xs.empty() ? g : AndersonFactors(xs, gs));
     const P from = fit->params;
-    *fit = refit(xs.back(), from, max_iterations - iterations);
+    *fit = refit(xs.back(), from, true);
     iterations += fit->report.iterations;
+    if (refits == 0) starts += fit->report.starts - 1;  // `from` counted
     ++refits;
   }
   fit->report.iterations = iterations;
-  fit->report.starts = starts;  // the first fit's search
+  fit->report.starts = starts;
   fit->report.search = search;
   fit->params.energy_bound = bound;
   ReportEnergyBound(
       gs.empty() ? EnergyBoundFactors(table, bound.get()) : gs.back(), refits,
-      settled, why, &fit->report);
+      settled, &fit->report);
   ReportModelEnergy(ModelParams(fit->params), &fit->report);
 }
 

@@ -387,4 +387,13 @@ const MeasurementTable& SearchTable(const MeasurementTable& table,
   return *storage;
 }
 
+std::vector<double> SearchRowValues(size_t rows,
+                                    const std::vector<double>* per_row) {
+  if (!per_row) return {};
+  if (rows <= kSampleRows) return *per_row;
+  std::vector<double> out;
+  for (uint32_t i : SampleRows(rows, kSampleRows)) out.push_back((*per_row)[i]);
+  return out;
+}
+
 }  // namespace clothfit

@@ -60,6 +60,11 @@ struct StartPoint {
 const MeasurementTable& SearchTable(const MeasurementTable& table,
                                     MeasurementTable* storage);
 
+// The entries of `per_row` (one per row of a table of `rows` rows) at the
+// rows SearchTable keeps; empty for a null `per_row`.
+std::vector<double> SearchRowValues(size_t rows,
+                                    const std::vector<double>* per_row);
+
 // The `keep` best distinct starting points (some width a factor of 2 or
 // more apart from every better one), best first. Grid: widths 1, 1.41, 2,
 // 2.83, ..., 90 degrees (a factor sqrt(2) apart) and the initial value,

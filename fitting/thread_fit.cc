@@ -37,9 +37,12 @@ struct ThreadEvaluator {
 // search sees the rows the starts are solved on.
 std::vector<std::vector<double>> SearchThreadStarts(
     const MeasurementTable& table, const ThreadFitOptions& options,
-    const Weighting& weighting, const std::vector<ParameterSpec>& specs) {
+    const Weighting& weighting, const std::vector<ParameterSpec>& specs,
+    const std::vector<double>* bound_factor) {
   MeasurementTable sample_storage;
   const MeasurementTable& sample = SearchTable(table, &sample_storage);
+  const std::vector<double> factor =
+      SearchRowValues(table.rows.size(), bound_factor);
   StartSearchProblem search;
   search.table = &sample;
   search.weighting = &weighting;
@@ -48,6 +51,7 @@ std::vector<std::vector<double>> SearchThreadStarts(
     RowValues v(sample.rows.size());
     for (size_t i = 0; i < v.size(); ++i) {
       v[i] = Value(p, sample.rows[i].wi, sample.rows[i].wo, sample.quantity);
+      if (!factor.empty()) v[i] *= factor[i];
     }
     return v;
   };
@@ -68,11 +72,13 @@ std::vector<std::vector<double>> SearchThreadStarts(
 }
 
 // One fit of the model through the rows' bound factors (null: the paper's
-// model): from the start search, or from `refit_from` alone.
+// model): from the start search, from `refit_from` alone, or (`search_too`)
+// from `refit_from` and the search's starts.
 ThreadFitResult FitThreadThrough(const MeasurementTable& table,
                                  const ThreadFitOptions& options,
                                  const std::vector<double>* bound_factor,
-                                 const ThreadParams* refit_from) {
+                                 const ThreadParams* refit_from,
+                                 bool search_too = false) {
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(ThreadParams());
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -94,13 +100,15 @@ ThreadFitResult FitThreadThrough(const MeasurementTable& table,
                         ThreadEvaluator{&table, bound_factor}),
                     TableFitRows(table, weighting), blocks, &lsq);
   std::vector<std::vector<double>> starts;
+  if (!refit_from || search_too) {
+    starts =
+        SearchThreadStarts(table, options, weighting, lsq.specs, bound_factor);
+  }
   if (refit_from) {
     std::vector<double> x(kThreadFlatSize + 1);
     ToArray(*refit_from, x.data());
     x[kThreadFlatSize] = refit_from->scale;
-    starts.push_back(x);
-  } else {
-    starts = SearchThreadStarts(table, options, weighting, lsq.specs);
+    starts.insert(starts.begin(), x);
   }
 
   ThreadFitResult result;
@@ -139,12 +147,10 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                               nullptr, nullptr);
     result.report.rows = static_cast<int>(table.rows.size());
     SettleEnergyBound<ThreadParams>(
-        table, options.solver.max_iterations,
+        table,
         [&](const std::vector<double>& factors, const ThreadParams& from,
-            int max_iterations) {
-          ThreadFitOptions refit = options;
-          refit.solver.max_iterations = max_iterations;
-          return FitThreadThrough(table, refit, &factors, &from);
+            bool search) {
+          return FitThreadThrough(table, options, &factors, &from, search);
         },
         &result);
   } else {
