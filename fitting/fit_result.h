@@ -21,8 +21,8 @@ inline constexpr int kMaxSolverIterations = 100000;
 inline constexpr int kMaxSolverThreads = 256;
 
 struct SolverOptions {
-  // [1, kMaxSolverIterations]: per solve; a thread or cloth fit's refits
-  // for the energy bound share it (fitting/energy_bound_fit_internal.h).
+  // [1, kMaxSolverIterations]: per solve (each refit of a bounded thread
+  // or cloth fit has it, fitting/energy_bound_fit_internal.h).
   int max_iterations = 200;
   Loss loss = Loss::kNone;
   double loss_scale = 1.0;  // > 0, in units of sigma (normalised residuals)
