@@ -43,7 +43,9 @@ std::vector<DesignEntry> DesignEntries(const ClothStartProblem& problem) {
   // offsets it is the same weave, so half a turn covers the orientations.
   add(v.Rotation(), -90.0, 90.0);
   for (size_t j = 0; j < v.Threads(); ++j) {
-    add(v.Thread(j), 1.1, 2.0);    // eta: fibres' usual range
+    // eta: from its search limit 1.01 (a Fresnel term that acts toward
+    // grazing only) to fibres' 1.46-1.6.
+    add(v.Thread(j), 1.01, 1.6);
     add(v.Coverage(j), 0.0, 1.0);  // a stick entry
     add(v.OffsetScale(j), 0.0, 3.0);
     for (size_t k = 0; k < v.Offsets(j); ++k) add(v.Offset(j, k), -80.0, 80.0);
