@@ -58,6 +58,14 @@ LafortuneModel TwoLobes() {
   return m;
 }
 
+// Two lobes whose channels differ (an rgb texel): a power per channel.
+LafortuneModel TwoRgbLobes() {
+  LafortuneModel m = TwoLobes();
+  m.params.lobes[0].cx = glm::dvec3(-0.9, -0.8, -0.7);
+  m.params.lobes[1].n = glm::dvec3(3.0, 4.0, 5.0);
+  return m;
+}
+
 void BM_MaterialF_SatinPreset(benchmark::State& state) {
   RunF(state, Material::FromParams(Satin()));
 }
@@ -77,6 +85,16 @@ void BM_MaterialF_Lafortune2Lobes_Float(benchmark::State& state) {
   RunF(state, MaterialF::FromParams(TwoLobes()));
 }
 BENCHMARK(BM_MaterialF_Lafortune2Lobes_Float);
+
+void BM_MaterialF_Lafortune2RgbLobes(benchmark::State& state) {
+  RunF(state, Material::FromParams(TwoRgbLobes()));
+}
+BENCHMARK(BM_MaterialF_Lafortune2RgbLobes);
+
+void BM_MaterialF_Lafortune2RgbLobes_Float(benchmark::State& state) {
+  RunF(state, MaterialF::FromParams(TwoRgbLobes()));
+}
+BENCHMARK(BM_MaterialF_Lafortune2RgbLobes_Float);
 
 void BM_SampleClothWi_Satin(benchmark::State& state) {
   const ClothParams satin = Satin();

@@ -36,7 +36,7 @@ Vec3<T> ConvertQuantity(const Vec3<T>& value, Quantity from, Quantity to,
   using std::abs;
   if (from == to) return value;
   if (to == Quantity::kCosineWeighted) return value * T(abs(wi_z));
-  return value / T(Max(wi_z, G(kMinCosIncidence)));
+  return value * (T(1.0) / T(Max(wi_z, G(kMinCosIncidence))));  // one division
 }
 
 // The factor k of ConvertQuantity, value_to = k value_from (also the

@@ -249,6 +249,24 @@ std::array<T, C> LobeSums(const Diffuse& diffuse, const Lobe& lobe, int lobes,
   std::array<T, C> sum;
   for (int c = 0; c < C; ++c) sum[c] = diffuse(c);
   for (int k = 0; k < lobes; ++k) {
+    if constexpr (std::is_floating_point_v<T> && C > 1) {
+      // A grey lobe (every channel's Cx, Cy, Cz and N the same: a
+      // one-channel table's fit, or a grey texel) has one power for all
+      // channels, the same value bit for bit.
+      bool grey = true;
+      for (int q = 0; q < 4 && grey; ++q) {
+        for (int c = 1; c < C && grey; ++c) {
+          grey = lobe(k, q, c) == lobe(k, q, 0);
+        }
+      }
+      if (grey) {
+        const T power = LobePower(
+            lobe(k, 0, 0) * xx + lobe(k, 1, 0) * yy + lobe(k, 2, 0) * zz,
+            lobe(k, 3, 0));
+        for (int c = 0; c < C; ++c) sum[c] += power;
+        continue;
+      }
+    }
     for (int c = 0; c < C; ++c) {
       sum[c] += LobePower(
           lobe(k, 0, c) * xx + lobe(k, 1, c) * yy + lobe(k, 2, c) * zz,

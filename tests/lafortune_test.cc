@@ -103,6 +103,32 @@ TEST(LafortuneModel, LobeFormulaAndClampedPower) {
   EXPECT_DOUBLE_EQ(f.x.v[0], l.z);  // d f1 / d rho_d
 }
 
+// The three-channel lobe sum raises a grey lobe (channels alike) to its
+// power once; each channel must equal that channel's own sum (the
+// one-channel path, which has no shortcut) bit for bit, and a lobe that
+// differs in one entry of one channel must not take the shortcut.
+TEST(LafortuneModel, GreyLobeSharedPowerEqualsEachChannelsOwnSum) {
+  LafortuneParams grey;
+  grey.diffuse = glm::dvec3(0.1, 0.2, 0.3);
+  grey.lobes = {LafortuneLobe(), LafortuneLobe()};
+  grey.lobes[0].cx = glm::dvec3(-0.7);
+  grey.lobes[1].n = glm::dvec3(7.5);
+  LafortuneParams nearly = grey;
+  nearly.lobes[1].n.z = 7.5 * (1.0 + 1e-15);
+  for (const LafortuneParams& p : {grey, nearly}) {
+    std::vector<double> x(LafortuneChannelSize(2));
+    for (const glm::dvec3& l : Hemisphere(7)) {
+      for (const glm::dvec3& v : Hemisphere(5)) {
+        const glm::dvec3 all = LafortuneF1(p, l, v);
+        for (int c = 0; c < 3; ++c) {
+          LafortuneChannelToArray(p, c, x.data());
+          EXPECT_EQ(all[c], LafortuneF1Channel(x.data(), 2, l, v));
+        }
+      }
+    }
+  }
+}
+
 TEST(LafortuneModel, TexelFrameIsOrthonormalAndTheSurfaceFrameForPlusZ) {
   const TexelFrame z = MakeTexelFrame(glm::dvec3(0, 0, 3));
   EXPECT_EQ(z.t, glm::dvec3(1, 0, 0));
