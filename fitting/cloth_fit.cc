@@ -7,6 +7,7 @@
 
 #include "fitting/cloth_search.h"
 #include "fitting/cloth_weave_internal.h"
+#include "fitting/energy.h"
 #include "fitting/energy_bound_fit_internal.h"
 #include "fitting/least_squares.h"
 #include "fitting/model_residual_internal.h"
@@ -67,6 +68,20 @@ std::vector<double> ClothParameterValues(const ClothParams& c,
 }
 
 namespace {
+
+// The cloth a solution x writes: of a one-channel table, the g and b of
+// the albedos and the diffuse term follow r.
+ClothParams WrittenCloth(const Weave& weave, const std::vector<double>& x,
+                         int channels) {
+  ClothParams c = ClothFromVector(weave, ReportedVector(weave, x));
+  if (channels == 1) {
+    for (ClothThread& th : c.threads) {
+      th.params.albedo = glm::dvec3(th.params.albedo.x);
+    }
+    c.diffuse = glm::dvec3(c.diffuse.x);
+  }
+  return c;
+}
 
 // Whether entry i moves the tangent samples (the rotation, a thread's
 // offset_scale or offsets).
@@ -234,6 +249,18 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
   }
   SetModelResiduals(std::shared_ptr<const ClothEvaluator>(evaluator),
                     TableFitRows(table, weighting), blocks, &lsq);
+  // The fit writes a cloth that conserves energy (scaled down if need
+  // be): among the starts' solutions, one that conserves energy as it
+  // stands wins over a lower cost that would be scaled down.
+  const bool conserve =
+      options.conserve_energy && !options.energy_bound && !bound_factor;
+  if (conserve) {
+    lsq.plausible = [weave,
+                     channels = table.channels](const std::vector<double>& x) {
+      const ClothParams c = WrittenCloth(*weave, x, channels);
+      return ModelEnergy(ModelParams(c)).max_albedo <= 1.0;
+    };
+  }
 
   // Starts (fitting/cloth_search.h): the widths and linear entries by a
   // grid and closed form, over a space-filling design of the geometry and
@@ -273,7 +300,7 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
                            result.report.search;
   }
   ReportWeighting(weighting, &result.report);
-  result.params = ClothFromVector(*weave, ReportedVector(*weave, x));
+  result.params = WrittenCloth(*weave, x, table.channels);
   result.report.rows = static_cast<int>(table.rows.size());
   if (weave->shared_albedo) {  // report the tied albedos at their value
     for (ParameterReport& p : result.report.parameters) {
@@ -285,14 +312,10 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
     }
   }
   if (table.channels == 1) {
-    for (ClothThread& th : result.params.threads) {
-      th.params.albedo = glm::dvec3(th.params.albedo.x);
-    }
-    result.params.diffuse = glm::dvec3(result.params.diffuse.x);
     ReportChannelsFollowRed("albedo", &result.report);
     ReportChannelsFollowRed("diffuse", &result.report);
   }
-  if (options.conserve_energy && !options.energy_bound && !bound_factor) {
+  if (conserve) {
     std::vector<double> model, measured;
     PredictAll(lsq, x, &model, &measured, nullptr);
     ConserveEnergyByScale(ModelParams(result.params), model, measured,
@@ -348,7 +371,8 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
         table,
         [&](const std::vector<double>& factors, const ClothParams&,
             bool search) {
-          return FitClothThrough(table, init, options, &factors, &x, &x, search);
+          return FitClothThrough(table, init, options, &factors, &x, &x,
+                                 search);
         },
         &result);
   } else {

@@ -10,12 +10,21 @@
 #include <random>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "fitting/ceres_linear_solver_internal.h"
 #include "fitting/covariance_internal.h"
 
 namespace clothfit {
 namespace {
+
+// A free entry on an end of its bounds that only limits the search.
+bool OnSearchLimit(const ParameterSpec& spec, double v) {
+  if (!spec.free || !OnFitBound(v, spec.lower, spec.upper)) return false;
+  const bool on_lower = v - spec.lower < spec.upper - v;
+  return !spec.physical_bounds &&
+         !(on_lower ? spec.physical_lower : spec.physical_upper);
+}
 
 // The problem at x, with bounds and free/fixed entries applied.
 struct BuiltProblem {
@@ -248,9 +257,7 @@ void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
     p.upper = spec.upper;
     // On the solver's bound (a reparameterised entry's too).
     p.at_bound = spec.free && OnFitBound(x[i], spec.lower, spec.upper);
-    const bool on_lower = x[i] - spec.lower < spec.upper - x[i];
-    p.at_search_limit = p.at_bound && !spec.physical_bounds &&
-                        !(on_lower ? spec.physical_lower : spec.physical_upper);
+    p.at_search_limit = OnSearchLimit(spec, x[i]);
     p.no_effect = no_effect[i];
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];
@@ -338,10 +345,16 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   // The stopping rule's count: solves whose cost is within kSameBasin of
   // the best.
   constexpr double kSameBasin = 1e-3;
-  std::vector<double> costs;
+  // A solution's rank before its cost: plausible (1, lsq.plausible).
+  std::vector<std::pair<double, int>> costs;  // and rank
+  int best_rank = -1;
+  auto rank_of = [&](const std::vector<double>& x) {
+    return !lsq.plausible || lsq.plausible(x) ? 1 : 0;
+  };
   auto hits = [&] {
-    return std::count_if(costs.begin(), costs.end(), [&](double c) {
-      return c <= best.final_cost * (1.0 + kSameBasin) + 1e-300;
+    return std::count_if(costs.begin(), costs.end(), [&](const auto& c) {
+      return c.second == best_rank &&
+             c.first <= best.final_cost * (1.0 + kSameBasin) + 1e-300;
     });
   };
   size_t solved = 0;
@@ -359,8 +372,13 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     const ceres::Solver::Summary summary = solve(&x, start_rows);
     const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
-    if (usable) costs.push_back(summary.final_cost);
-    if (usable && summary.final_cost < best.final_cost) {
+    const int rank = usable ? rank_of(x) : -1;
+    if (usable) costs.emplace_back(summary.final_cost, rank);
+    const bool better =
+        usable && (rank != best_rank ? rank > best_rank
+                                     : summary.final_cost < best.final_cost);
+    if (better) {
+      best_rank = rank;
       best = FitReport();
       best.usable = true;
       take(summary, x);

@@ -124,6 +124,12 @@ struct LeastSquaresProblem {
   // standard deviations by the delta method, G Cov G^T with G = d
   // reported / dx over the free entries (central differences).
   std::function<std::vector<double>(const std::vector<double>& x)> reported;
+  // If set: whether solution x is plausible as it would be written (a
+  // cloth that conserves energy, fitting/cloth_fit.cc). The multi-start
+  // then keeps a plausible solution over any implausible one (the lowest
+  // cost within each kind), and the stopping rule counts solves of the
+  // kept one's kind.
+  std::function<bool(const std::vector<double>& x)> plausible;
   // Multi-start stopping rule: when > 0, the starts (ranked best first by
   // their caller) are solved in order until the lowest final cost so far
   // has been reached by this many solves (costs within a relative 1e-3 of

@@ -1,5 +1,6 @@
 // The shared least-squares machinery (fitting/least_squares.h): a model
-// value that is not finite during a fit is reported with its row.
+// value that is not finite during a fit is reported with its row; a
+// multi-start prefers a plausible solution.
 #include "fitting/least_squares.h"
 
 #include <ceres/ceres.h>
@@ -101,6 +102,61 @@ TEST(LeastSquaresTest, RowMadeInMemoryIsSaidToBe) {
   rows[0].source_line = 0;
   const std::string where = NonFiniteRow(PoleProblem(rows), {1.0});
   EXPECT_NE(where.find("a row made in memory"), std::string::npos) << where;
+}
+
+// Two basins: r = (p^2 - 4, 0.1 (p - 2)) has its lowest cost at p = 2 and
+// another minimum near p = -2 (cost about 0.08).
+struct TwoBasins {
+  template <typename T>
+  bool operator()(const T* p, T* r) const {
+    r[0] = p[0] * p[0] - T(4.0);
+    r[1] = T(0.1) * (p[0] - T(2.0));
+    return true;
+  }
+};
+
+LeastSquaresProblem TwoBasinProblem() {
+  LeastSquaresProblem lsq;
+  lsq.specs = {ParameterSpec{"p", -10.0, 10.0, true, true}};
+  lsq.block_sizes = {1};
+  lsq.add_residuals = [](const std::vector<double*>& blocks,
+                         ceres::LossFunction* loss, ceres::Problem* problem,
+                         const ResidualRows&) {
+    problem->AddResidualBlock(
+        new ceres::AutoDiffCostFunction<TwoBasins, 2, 1>(new TwoBasins), loss,
+        blocks[0]);
+    return size_t{2};
+  };
+  lsq.predict = [](const std::vector<double>& x,
+                   const PredictionVisitor& visit) {
+    visit(x[0] * x[0], 4.0, nullptr);
+    visit(0.1 * x[0], 0.2, nullptr);
+  };
+  return lsq;
+}
+
+// A multi-start keeps the lowest cost, unless that solution is not
+// plausible (as a cloth that reflects more than it receives): then the
+// best plausible one, whichever start came first.
+TEST(LeastSquaresTest, MultiStartPrefersAPlausibleSolutionToALowerCost) {
+  LeastSquaresProblem lsq = TwoBasinProblem();
+  std::vector<double> x;
+  FitReport report =
+      SolveLeastSquares(lsq, {{2.5}, {-2.5}}, SolverOptions(), &x);
+  ASSERT_TRUE(report.usable) << report.message;
+  EXPECT_NEAR(x[0], 2.0, 1e-6);
+  lsq.plausible = [](const std::vector<double>& x) { return x[0] < 0.0; };
+  for (const auto& starts : {std::vector<std::vector<double>>{{2.5}, {-2.5}},
+                             std::vector<std::vector<double>>{{-2.5}, {2.5}}}) {
+    report = SolveLeastSquares(lsq, starts, SolverOptions(), &x);
+    ASSERT_TRUE(report.usable) << report.message;
+    EXPECT_NEAR(x[0], -2.0, 0.05);
+    EXPECT_GT(report.final_cost, 0.01);
+  }
+  // No plausible solution: the lowest cost, as without the check.
+  lsq.plausible = [](const std::vector<double>&) { return false; };
+  report = SolveLeastSquares(lsq, {{-2.5}, {2.5}}, SolverOptions(), &x);
+  EXPECT_NEAR(x[0], 2.0, 1e-6);
 }
 
 }  // namespace
