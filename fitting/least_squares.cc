@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <random>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -17,14 +16,6 @@
 
 namespace clothfit {
 namespace {
-
-// A free entry on an end of its bounds that only limits the search.
-bool OnSearchLimit(const ParameterSpec& spec, double v) {
-  if (!spec.free || !OnFitBound(v, spec.lower, spec.upper)) return false;
-  const bool on_lower = v - spec.lower < spec.upper - v;
-  return !spec.physical_bounds &&
-         !(on_lower ? spec.physical_lower : spec.physical_upper);
-}
 
 // The problem at x, with bounds and free/fixed entries applied.
 struct BuiltProblem {
@@ -257,7 +248,9 @@ void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
     p.upper = spec.upper;
     // On the solver's bound (a reparameterised entry's too).
     p.at_bound = spec.free && OnFitBound(x[i], spec.lower, spec.upper);
-    p.at_search_limit = OnSearchLimit(spec, x[i]);
+    const bool on_lower = x[i] - spec.lower < spec.upper - x[i];
+    p.at_search_limit = p.at_bound && !spec.physical_bounds &&
+                        !(on_lower ? spec.physical_lower : spec.physical_upper);
     p.no_effect = no_effect[i];
     p.stddev = stddev[i];
     p.stddev_sandwich = sandwich[i];
@@ -266,26 +259,6 @@ void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
 }
 
 }  // namespace
-
-std::vector<uint32_t> SampleRows(size_t n, size_t m) {
-  std::vector<uint32_t> out;
-  if (m >= n) {
-    out.resize(n);
-    for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint32_t>(i);
-    return out;
-  }
-  out.reserve(m);
-  std::mt19937_64 random(0x5eed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  // Algorithm S: row i is taken with probability (wanted) / (left).
-  for (size_t i = 0; i < n && out.size() < m; ++i) {
-    if (static_cast<double>(n - i) * u(random) <
-        static_cast<double>(m - out.size())) {
-      out.push_back(static_cast<uint32_t>(i));
-    }
-  }
-  return out;
-}
 
 FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
                             const std::vector<std::vector<double>>& starts,
@@ -345,15 +318,13 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   // The stopping rule's count: solves whose cost is within kSameBasin of
   // the best.
   constexpr double kSameBasin = 1e-3;
-  // A solution's rank before its cost: plausible (1, lsq.plausible).
-  std::vector<std::pair<double, int>> costs;  // and rank
-  int best_rank = -1;
-  auto rank_of = [&](const std::vector<double>& x) {
-    return !lsq.plausible || lsq.plausible(x) ? 1 : 0;
-  };
+  // Each solve's cost and whether it is plausible (lsq.plausible): a
+  // plausible solution is kept over any other, and counted with its kind.
+  std::vector<std::pair<double, bool>> costs;
+  bool best_plausible = false;
   auto hits = [&] {
     return std::count_if(costs.begin(), costs.end(), [&](const auto& c) {
-      return c.second == best_rank &&
+      return c.second == best_plausible &&
              c.first <= best.final_cost * (1.0 + kSameBasin) + 1e-300;
     });
   };
@@ -372,13 +343,13 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     const ceres::Solver::Summary summary = solve(&x, start_rows);
     const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
-    const int rank = usable ? rank_of(x) : -1;
-    if (usable) costs.emplace_back(summary.final_cost, rank);
-    const bool better =
-        usable && (rank != best_rank ? rank > best_rank
-                                     : summary.final_cost < best.final_cost);
+    const bool plausible = usable && (!lsq.plausible || lsq.plausible(x));
+    if (usable) costs.emplace_back(summary.final_cost, plausible);
+    const bool better = usable && (plausible != best_plausible
+                                       ? plausible
+                                       : summary.final_cost < best.final_cost);
     if (better) {
-      best_rank = rank;
+      best_plausible = plausible;
       best = FitReport();
       best.usable = true;
       take(summary, x);

@@ -1,7 +1,10 @@
 // What the rows of a least-squares problem say about it: the first
-// non-finite model value, and how many residuals are distinct.
+// non-finite model value, and how many residuals are distinct; and the
+// sample of rows a large problem's starts are solved on.
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -12,6 +15,26 @@
 #include "io/table.h"
 
 namespace clothfit {
+
+std::vector<uint32_t> SampleRows(size_t n, size_t m) {
+  std::vector<uint32_t> out;
+  if (m >= n) {
+    out.resize(n);
+    for (size_t i = 0; i < n; ++i) out[i] = static_cast<uint32_t>(i);
+    return out;
+  }
+  out.reserve(m);
+  std::mt19937_64 random(0x5eed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  // Algorithm S: row i is taken with probability (wanted) / (left).
+  for (size_t i = 0; i < n && out.size() < m; ++i) {
+    if (static_cast<double>(n - i) * u(random) <
+        static_cast<double>(m - out.size())) {
+      out.push_back(static_cast<uint32_t>(i));
+    }
+  }
+  return out;
+}
 
 void PredictAll(const LeastSquaresProblem& lsq, const std::vector<double>& x,
                 std::vector<double>* model, std::vector<double>* measured,
