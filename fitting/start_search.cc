@@ -5,9 +5,11 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include "fitting/least_squares.h"
 #include "fitting/residual_weight.h"
+#include "fitting/small_least_squares.h"
 #include "models/microcylinder_cloth.h"
 
 namespace clothfit {
@@ -73,21 +75,41 @@ class Gram {
   std::vector<double> g_, b_, yy_;
 };
 
-// A linear combination of basis vectors.
-using Combination = std::vector<std::pair<size_t, double>>;
+// The most threads a search handles (a cloth has 1 to 3), and so the most
+// linear entries of one problem: an albedo and a B per thread, the
+// diffuse amplitude and the scale.
+constexpr size_t kMaxThreads = 3;
+constexpr int kMaxLinear = 2 * kMaxThreads + 2;
+static_assert(kMaxLinear <= kMaxSmallSystem, "see small_least_squares.h");
+
+// A linear combination of basis vectors: at most three per thread (its
+// surface, P and R) and the diffuse one.
+struct Combination {
+  static constexpr int kMaxTerms = 3 * kMaxThreads + 1;
+  size_t index[kMaxTerms];
+  double weight[kMaxTerms];
+  int size = 0;
+  void Add(size_t i, double w) {
+    index[size] = i;
+    weight[size] = w;
+    ++size;
+  }
+};
 
 double Dot(const Gram& gram, int c, const Combination& a,
            const Combination& b) {
   double sum = 0.0;
-  for (const auto& [u, x] : a) {
-    for (const auto& [v, y] : b) sum += x * y * gram.G(c, u, v);
+  for (int u = 0; u < a.size; ++u) {
+    for (int v = 0; v < b.size; ++v) {
+      sum += a.weight[u] * b.weight[v] * gram.G(c, a.index[u], b.index[v]);
+    }
   }
   return sum;
 }
 
 double DotY(const Gram& gram, int c, const Combination& a) {
   double sum = 0.0;
-  for (const auto& [u, x] : a) sum += x * gram.B(c, u);
+  for (int u = 0; u < a.size; ++u) sum += a.weight[u] * gram.B(c, a.index[u]);
   return sum;
 }
 
@@ -103,6 +125,9 @@ class Search {
  public:
   explicit Search(const StartSearchProblem& problem) : problem_(problem) {
     const size_t n = problem.init.size();
+    if (n > kMaxThreads) {
+      throw std::invalid_argument("start search: more than 3 threads");
+    }
     std::vector<RowValues> vectors;
     auto add = [&](RowValues v) {
       vectors.push_back(std::move(v));
@@ -149,13 +174,17 @@ class Search {
                   StartPoint* point) const {
     const StartSearchProblem& problem = problem_;
     const int channels = problem.table->channels;
-    const size_t n = choice.size();
+    const size_t n = choice.size();  // <= kMaxThreads (the constructor)
     // Columns of the design: albedos (shared or per thread with a free
     // albedo), B_j = A_j kd_j for threads with kd free, then the scale; the
     // constant part holds the surfaces and the volumes of fixed albedos.
-    std::vector<int> a_index(n, -1), b_index(n, -1);
+    // The volume A P + B (R - P) is U P + B R with U = A - B: the bounds
+    // A >= 0, 0 <= B <= A are then U >= 0, B >= 0, bounds of each entry
+    // alone, unless threads share one albedo (several B_j <= A).
+    int a_index[kMaxThreads], b_index[kMaxThreads];
     int m = 0, shared_index = -1;
     for (size_t j = 0; j < n; ++j) {
+      a_index[j] = b_index[j] = -1;
       if (!problem.albedo_free[j]) continue;
       if (problem.shared_albedo) {
         if (shared_index < 0) shared_index = m++;
@@ -170,63 +199,94 @@ class Search {
     const bool diffuse = diffuse_ != kNone;
     const int d_index = diffuse && problem.diffuse_free ? m++ : -1;
     const int s_index = problem.fit_scale ? m++ : -1;
+    const bool split = !problem.shared_albedo;  // columns U and B
+    // The bounds: s >= 1e-6, the others >= 0 (and 0 <= B_j <= A_j).
+    auto lower = [&](int a) { return a == s_index ? 1e-6 : 0.0; };
+    auto upper = [&](int a, const double* x) {
+      double hi = 1e6;
+      for (size_t j = 0; j < n && !split; ++j) {
+        if (b_index[j] == a) hi = x[a_index[j]];
+      }
+      return std::max(lower(a), hi);
+    };
 
     point->threads = problem.init;
     point->scale = 1.0;
     point->diffuse = problem.init_diffuse;
-    std::vector<glm::dvec3> a_out(n, glm::dvec3(0.0)),
-        b_out(n, glm::dvec3(0.0));
+    glm::dvec3 a_out[kMaxThreads] = {}, b_out[kMaxThreads] = {};
     double scale_sum = 0.0;
     for (int c = 0; c < channels; ++c) {
-      std::vector<Combination> column(m);
+      Combination column[kMaxLinear];
       Combination constant;
       for (size_t j = 0; j < n; ++j) {
         const ThreadVectors& t = threads_[j];
         const size_t surface = t.surface[choice[j].first];
         const size_t p = t.p[choice[j].second];
-        constant.push_back({surface, 1.0});
+        constant.Add(surface, 1.0);
         const double kd = problem.init[j].kd;
         if (a_index[j] < 0) {  // fixed albedo: a known volume
           const double a = problem.init[j].albedo[c];
-          constant.push_back({p, a * (1.0 - kd)});
-          constant.push_back({t.r, a * kd});
+          constant.Add(p, a * (1.0 - kd));
+          constant.Add(t.r, a * kd);
         } else if (b_index[j] < 0) {  // fixed kd
-          column[a_index[j]].push_back({p, 1.0 - kd});
-          column[a_index[j]].push_back({t.r, kd});
+          column[a_index[j]].Add(p, 1.0 - kd);
+          column[a_index[j]].Add(t.r, kd);
+        } else if (split) {
+          column[a_index[j]].Add(p, 1.0);
+          column[b_index[j]].Add(t.r, 1.0);
         } else {
-          column[a_index[j]].push_back({p, 1.0});
-          column[b_index[j]].push_back({t.r, 1.0});
-          column[b_index[j]].push_back({p, -1.0});
+          column[a_index[j]].Add(p, 1.0);
+          column[b_index[j]].Add(t.r, 1.0);
+          column[b_index[j]].Add(p, -1.0);
         }
       }
       if (d_index >= 0) {
-        column[d_index].push_back({diffuse_, 1.0});
+        column[d_index].Add(diffuse_, 1.0);
       } else if (diffuse) {
-        constant.push_back({diffuse_, problem.init_diffuse[c]});
+        constant.Add(diffuse_, problem.init_diffuse[c]);
       }
       if (s_index >= 0) column[s_index] = constant;
-      std::vector<double> ata(m * m), atb(m);
+      double ata[kMaxLinear * kMaxLinear], atb[kMaxLinear];
       for (int a = 0; a < m; ++a) {
         atb[a] = DotY(*gram_, c, column[a]);
         if (s_index < 0) atb[a] -= Dot(*gram_, c, column[a], constant);
-        for (int b = 0; b < m; ++b) {
-          ata[a * m + b] = Dot(*gram_, c, column[a], column[b]);
+        for (int b = 0; b <= a; ++b) {
+          ata[a * m + b] = ata[b * m + a] =
+              Dot(*gram_, c, column[a], column[b]);
         }
       }
-      std::vector<double> x(m, 0.0);
-      if (s_index >= 0) x[s_index] = 1.0;
-      for (int sweep = 0; sweep < 200; ++sweep) {  // projected Gauss-Seidel
-        for (int a = 0; a < m; ++a) {
-          if (!(ata[a * m + a] > 0.0)) continue;
-          double rhs = atb[a];
-          for (int b = 0; b < m; ++b) {
-            if (b != a) rhs -= ata[a * m + b] * x[b];
+      // The unconstrained solution is the bounded one where it lies within
+      // the bounds (the problem is convex); else, with bounds on each
+      // entry alone, the active-set solution, and otherwise projected
+      // Gauss-Seidel until a sweep no longer moves x.
+      double x[kMaxLinear], lo[kMaxLinear];
+      for (int a = 0; a < m; ++a) lo[a] = lower(a);
+      bool inside = SolveCholesky(ata, atb, m, x);
+      for (int a = 0; a < m && inside; ++a) {
+        inside = x[a] >= lo[a] && x[a] <= upper(a, x);
+      }
+      if (!inside && split) {
+        inside = SolveAboveBounds(ata, atb, lo, m, x);
+        for (int a = 0; a < m && inside; ++a) inside = x[a] <= upper(a, x);
+      }
+      if (!inside) {
+        std::fill(x, x + m, 0.0);
+        if (s_index >= 0) x[s_index] = 1.0;
+        for (int sweep = 0; sweep < 200; ++sweep) {
+          double change = 0.0;
+          for (int a = 0; a < m; ++a) {
+            if (!(ata[a * m + a] > 0.0)) continue;
+            double rhs = atb[a];
+            for (int b = 0; b < m; ++b) {
+              if (b != a) rhs -= ata[a * m + b] * x[b];
+            }
+            const double next =
+                std::clamp(rhs / ata[a * m + a], lower(a), upper(a, x));
+            change = std::max(
+                change, std::abs(next - x[a]) / std::max(1.0, std::abs(next)));
+            x[a] = next;
           }
-          double lo = a == s_index ? 1e-6 : 0.0, hi = 1e6;
-          for (size_t j = 0; j < n; ++j) {
-            if (b_index[j] == a) hi = x[a_index[j]];  // 0 <= B_j <= A_j
-          }
-          x[a] = std::clamp(rhs / ata[a * m + a], lo, std::max(lo, hi));
+          if (change <= 1e-14) break;
         }
       }
       const double s = s_index >= 0 ? x[s_index] : 1.0;
@@ -234,6 +294,7 @@ class Search {
       for (size_t j = 0; j < n; ++j) {
         if (a_index[j] >= 0) a_out[j][c] = x[a_index[j]] / s;
         if (b_index[j] >= 0) b_out[j][c] = x[b_index[j]] / s;
+        if (split && b_index[j] >= 0) a_out[j][c] += b_out[j][c];  // U + B
       }
       if (d_index >= 0) {  // one channel: g and b follow r
         for (int k = c; k < (channels == 1 ? 3 : c + 1); ++k) {
@@ -267,13 +328,12 @@ class Search {
       for (size_t j = 0; j < n; ++j) {
         const ThreadParams& tp = point->threads[j];
         const ThreadVectors& t = threads_[j];
-        model.push_back({t.surface[choice[j].first], point->scale});
-        model.push_back({t.p[choice[j].second],
-                         point->scale * tp.albedo[c] * (1.0 - tp.kd)});
-        model.push_back({t.r, point->scale * tp.albedo[c] * tp.kd});
+        model.Add(t.surface[choice[j].first], point->scale);
+        model.Add(t.p[choice[j].second],
+                  point->scale * tp.albedo[c] * (1.0 - tp.kd));
+        model.Add(t.r, point->scale * tp.albedo[c] * tp.kd);
       }
-      if (diffuse)
-        model.push_back({diffuse_, point->scale * point->diffuse[c]});
+      if (diffuse) model.Add(diffuse_, point->scale * point->diffuse[c]);
       cost += Dot(*gram_, c, model, model) - 2.0 * DotY(*gram_, c, model) +
               gram_->YY(c);
     }
