@@ -7,13 +7,15 @@ use their default relative noise) and times, one process each:
   thread     fit --model thread (default settings)
   lafortune  fit --model lafortune --lobes 2 --no-lut
   eval       eval --params (the thread's parameters) --dirs (the table)
+  cloth      fit --model cloth --preset linen_plain (default settings) on
+             a table of its own, synthesised from that preset the same way
 Wall time and the process's peak resident memory (os.wait4) go to
 DIR/scale_rows.csv, and DIR/scale_rows.svg draws both against the rows on
 log axes with the slope of the last two points of each line. A run that
 takes longer than --timeout seconds is stopped and recorded as such.
 Usage:
   python3 scripts/scale_rows.py [--max-rows 1000000] [--timeout 600]
-      [--build build] [--out DIR] [--jobs thread,lafortune,eval]
+      [--build build] [--out DIR] [--jobs thread,lafortune,eval,cloth]
 Results: docs/reliability.md ("Scale").
 """
 import argparse
@@ -63,7 +65,8 @@ def drop_sigma(src, dst):
 
 def svg(rows, path):
     """Two log-log panels (wall s, peak MiB) against rows, a line per job."""
-    colours = {"thread": "#1f77b4", "lafortune": "#d62728", "eval": "#2ca02c"}
+    colours = {"thread": "#1f77b4", "lafortune": "#d62728", "eval": "#2ca02c",
+               "cloth": "#9467bd"}
     width, height, margin = 460, 340, 60
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" '
            'font-family="sans-serif" font-size="12">' % (2 * width, height)]
@@ -124,7 +127,7 @@ def main():
     parser.add_argument("--build", default=os.path.join(ROOT, "build"))
     parser.add_argument("--out", default=os.path.join(
         ROOT, "data_synthetic", "out", "scale_rows"))
-    parser.add_argument("--jobs", default="thread,lafortune,eval")
+    parser.add_argument("--jobs", default="thread,lafortune,eval,cloth")
     args = parser.parse_args()
     clothfit = os.path.join(args.build, "apps", "clothfit")
     jobs = args.jobs.split(",")
@@ -141,11 +144,16 @@ def main():
     for n in rows_list:
         full = os.path.join(args.out, "t%d_sigma.csv" % n)
         table = os.path.join(args.out, "t%d.csv" % n)
-        subprocess.run([clothfit, "synth", "--params", params, "--rows",
-                        str(n), "--noise", "0.01", "--seed", "7", "--out",
-                        full], check=True, stdout=subprocess.DEVNULL)
-        drop_sigma(full, table)
-        os.remove(full)
+        cloth_table = os.path.join(args.out, "c%d.csv" % n)
+        for source, out in ((["--params", params], table),
+                            (["--preset", "linen_plain"], cloth_table)):
+            if out == cloth_table and "cloth" not in jobs:
+                continue
+            subprocess.run([clothfit, "synth"] + source + [
+                "--rows", str(n), "--noise", "0.01", "--seed", "7", "--out",
+                full], check=True, stdout=subprocess.DEVNULL)
+            drop_sigma(full, out)
+            os.remove(full)
         commands = {
             "thread": [clothfit, "fit", "--model", "thread", "--data", table,
                        "--out", os.path.join(args.out, "thread_fit.json")],
@@ -154,6 +162,9 @@ def main():
                           os.path.join(args.out, "lafortune_fit.json")],
             "eval": [clothfit, "eval", "--params", params, "--dirs", table,
                      "--out", os.path.join(args.out, "eval.csv")],
+            "cloth": [clothfit, "fit", "--model", "cloth", "--preset",
+                      "linen_plain", "--data", cloth_table, "--out",
+                      os.path.join(args.out, "cloth_fit.json")],
         }
         for job in jobs:
             wall, peak, status = run(commands[job], args.timeout)
@@ -162,6 +173,8 @@ def main():
             print("%-9s %9d rows: %8.2f s, %7.0f MiB, %s"
                   % (job, n, wall, peak, status), flush=True)
         os.remove(table)
+        if os.path.exists(cloth_table):
+            os.remove(cloth_table)
     with open(os.path.join(args.out, "scale_rows.csv"), "w",
               newline="") as f:
         writer = csv.DictWriter(f, ["job", "rows", "wall_s", "peak_mib",
