@@ -233,13 +233,16 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
   auto evaluator = std::make_shared<ClothEvaluator>();
   evaluator->table = &table;
   evaluator->weave = weave;
-  evaluator->samples.resize(table.rows.size());
   evaluator->bound_factor = bound_factor;
-  if (geometry_fixed) {
+  if (geometry_fixed && table.rows.size() <= options.held_sample_rows) {
+    evaluator->samples.resize(table.rows.size());
     for (size_t i = 0; i < table.rows.size(); ++i) {
       evaluator->samples[i] = std::make_shared<const RowSamples>(
           ComputeRowSamples(init, eta_fixed, table.rows[i]));
     }
+  } else if (geometry_fixed) {
+    evaluator->fixed_weave = std::make_shared<const ClothParams>(init);
+    evaluator->eta_fixed = eta_fixed;
   }
   ResidualBlocks blocks;
   for (int b = 0; b <= v.ClothBlock(); ++b) blocks.used.push_back(b);

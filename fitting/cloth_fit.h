@@ -7,6 +7,7 @@
 // number of tangent samples) comes from the initial parameters.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,13 @@ struct ClothFitOptions {
   // on 6; 1024 and 2048 points did no better (docs/fitting.md).
   int design_points = 512;
   int stop_after_hits = 3;
+  // With the geometry fixed, a table of at most this many rows holds each
+  // row's tangent samples (about 0.8 kB a row for the plain weave's four);
+  // a larger one computes them each time the row is evaluated, with the
+  // same result. Linen plain, default settings: 10^5 rows 3.6 s and 176
+  // MiB held, 4.5 s and 103 MiB computed; 10^6 rows 24 s and 1035 MiB
+  // held, 30 s and 303 MiB computed (docs/reliability.md).
+  size_t held_sample_rows = 100000;
   // Every thread shares thread 0's albedo (one colour for the fabric).
   bool shared_albedo = false;
   // Data on an arbitrary scale: fit a factor s on the model as well

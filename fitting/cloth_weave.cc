@@ -148,26 +148,36 @@ std::vector<ParameterSpec> ClothSpecs(const ClothParams& layout) {
   return specs;
 }
 
-RowSamples ComputeRowSamples(const ClothParams& cloth,
-                             const std::vector<bool>& eta_fixed,
-                             const TableRow& row) {
-  RowSamples out;
-  out.per_thread.resize(cloth.threads.size());
-  out.fresnel.resize(cloth.threads.size());
-  if (!IsReflectionRow(row)) return out;  // reflection only
+void FillRowSamples(const ClothParams& cloth,
+                    const std::vector<bool>& eta_fixed, const TableRow& row,
+                    RowSamples* out) {
+  out->per_thread.resize(cloth.threads.size());
+  out->fresnel.resize(cloth.threads.size());
+  for (size_t j = 0; j < cloth.threads.size(); ++j) {
+    out->per_thread[j].clear();  // keeps the capacity: no allocation
+    out->fresnel[j].clear();
+  }
+  if (!IsReflectionRow(row)) return;  // reflection only
   for (size_t j = 0; j < cloth.threads.size(); ++j) {
     const ClothThread& th = cloth.threads[j];
     for (double offset : th.offsets_deg) {
       const TangentSample<double> sample = ComputeTangentSample(
           th.direction, cloth.rotation_deg, offset, row.wi, row.wo);
-      out.per_thread[j].push_back(sample);
+      out->per_thread[j].push_back(sample);
       if (eta_fixed[j]) {
-        out.fresnel[j].push_back(
+        out->fresnel[j].push_back(
             sample.weight > 0.0 ? ThreadFresnel(sample.geometry, th.params.eta)
                                 : 0.0);
       }
     }
   }
+}
+
+RowSamples ComputeRowSamples(const ClothParams& cloth,
+                             const std::vector<bool>& eta_fixed,
+                             const TableRow& row) {
+  RowSamples out;
+  FillRowSamples(cloth, eta_fixed, row, &out);
   return out;
 }
 

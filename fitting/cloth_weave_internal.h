@@ -115,6 +115,10 @@ struct RowSamples {
 RowSamples ComputeRowSamples(const ClothParams& cloth,
                              const std::vector<bool>& eta_fixed,
                              const TableRow& row);
+// The same into *out, reusing its vectors' storage.
+void FillRowSamples(const ClothParams& cloth,
+                    const std::vector<bool>& eta_fixed, const TableRow& row,
+                    RowSamples* out);
 
 // The cloth described by Ceres' blocks (ClothVector's order, without the
 // scale); with_geometry: the tangent offsets and rotation too (otherwise
@@ -157,6 +161,11 @@ struct ClothEvaluator {
   const MeasurementTable* table;
   std::shared_ptr<const Weave> weave;
   std::vector<std::shared_ptr<const RowSamples>> samples;  // per row, or null
+  // With the geometry fixed but the samples not held (more rows than
+  // ClothFitOptions::held_sample_rows): the weave and which etas are
+  // fixed, to compute them per row.
+  std::shared_ptr<const ClothParams> fixed_weave;
+  std::vector<bool> eta_fixed;
   // The rows' energy bound factors (fitting/energy_bound_fit_internal.h),
   // or null: the paper's model.
   const std::vector<double>* bound_factor = nullptr;
@@ -165,10 +174,17 @@ struct ClothEvaluator {
   Vec3<T> operator()(const T* const* blocks, size_t i) const {
     const TableRow& row = table->rows[i];
     const T factor(bound_factor ? (*bound_factor)[i] : 1.0);
-    if (samples[i]) {
+    const RowSamples* row_samples =
+        samples.empty() ? nullptr : samples[i].get();
+    if (!row_samples && fixed_weave) {
+      thread_local RowSamples scratch;
+      FillRowSamples(*fixed_weave, eta_fixed, row, &scratch);
+      row_samples = &scratch;
+    }
+    if (row_samples) {
       return ConvertQuantity(
                  ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false),
-                                     *samples[i], row.wi.z),
+                                     *row_samples, row.wi.z),
                  Quantity::kCosineWeighted, table->quantity, row.wi.z) *
              factor;
     }
