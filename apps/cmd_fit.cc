@@ -316,9 +316,17 @@ int RunFit(int argc, char** argv) {
                   std::to_string(ClothFitOptions().design_points) + ")");
   AddSolverOptions(&args, SolverOptions(), true,
                    "threads for residual evaluation");
-  args.Option("starts", "N",
-              "multi-start: solve from the N best-ranked starting points "
-              "(default: 2 thread, 1 cloth)");
+  args.Option(
+      "starts", "N",
+      "multi-start: solve from the N best-ranked starting points "
+      "(default: " +
+          std::to_string(ThreadFitOptions().solve_starts) + " thread, " +
+          std::to_string(ClothFitOptions().solve_starts) +
+          " cloth; cloth with its geometry free: more than " +
+          std::to_string(ClothFitOptions().screen_keep) + " are screened by " +
+          std::to_string(ClothFitOptions().screen_iterations) +
+          " iterations and the best " +
+          std::to_string(ClothFitOptions().screen_keep) + " solved on)");
   args.Option("truth", "P.json", "print these true values beside the fit");
   args.Flag("generic-start",
             "cloth: keep only the weave of --init/--preset (directions, "

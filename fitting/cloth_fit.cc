@@ -113,6 +113,9 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
   held.solve_starts = 1;
   held.shared_albedo = options.shared_albedo;
   held.fit_scale = options.fit_scale;
+  // A start, not a result: the energy check (a quadrature, about as long as
+  // the held solve) waits for the solves from it.
+  held.conserve_energy = false;
   for (size_t i = 0; i < specs.size(); ++i) {
     if (specs[i].free && !IsGeometry(v, i) && i != v.Scale()) {
       held.free_only.push_back(specs[i].name);
@@ -287,7 +290,11 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
   if (searched) {
     starts = SearchClothStarts(search, std::max(1, options.solve_starts));
   }
-  if (starts.design_points > 1) lsq.stop_after_hits = options.stop_after_hits;
+  if (starts.design_points > 1) {
+    lsq.stop_after_hits = options.stop_after_hits;
+    lsq.screen_iterations = options.screen_iterations;
+    lsq.screen_keep = options.screen_keep;
+  }
   if (!geometry_fixed && searched) {
     starts.starts = RefineAtFixedGeometry(sample, *weave, lsq.specs, options,
                                           starts.starts);

@@ -77,6 +77,11 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
     // higher; the satin was never the best variant), its whole-table fits
     // taking 4.9-8.6 s instead of 5.8-11.6 s (felt).
     int design_points = ClothFitOptions().design_points;
+    // The solves of the best design points (with freedoms): the plain
+    // weave's 8 are screened (ClothFitOptions::screen_iterations), the
+    // satin's 4 solved in full (its rows, 10 tangent samples each, take
+    // twice as long).
+    int solve_starts = 8;
   };
   // The plain weave's freedoms (rotation, free offsets, a Lambertian term)
   // with free coverages or with a free eta per thread, 17 parameters for
@@ -94,7 +99,8 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
       {"polyester_satin_charmeuse",
        "cloth satin + rotation, offset_scale, diffuse",
        {"rotation_deg", "offset_scale", "diffuse"},
-       128},
+       128,
+       4},
   };
   for (const ClothVariant& v : variants) {
     ClothParams weave;
@@ -109,10 +115,7 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
            o.fit_scale = options.fit_scale;
            o.also_free = v.also_free;
            o.design_points = v.design_points;
-           // At most 4 solves of the best design points: scripts/curet.sh
-           // took 236 s with 8 and 162 s with 4, winning on 7 of 11
-           // fabrics both times.
-           if (!v.also_free.empty()) o.solve_starts = 4;
+           if (!v.also_free.empty()) o.solve_starts = v.solve_starts;
            if (warm) {  // the whole table's solution, solved again
              o.multi_start = false;
              o.solve_starts = 1;

@@ -86,9 +86,10 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   if (sampled) sample = SampleRows(lsq.rows, kSampleRows);
   const ResidualRows start_rows{sampled ? &sample : nullptr, true};
   size_t solved_residuals = 0;  // of the last solve's rows
-  // One solve from x (clamped into the bounds) on `which` rows; its
-  // summary.
-  auto solve = [&](std::vector<double>* x, const ResidualRows& which) {
+  // One solve from x (clamped into the bounds) on `which` rows, of at
+  // most `iterations` (0: options.max_iterations); its summary.
+  auto solve = [&](std::vector<double>* x, const ResidualRows& which,
+                   int iterations = 0) {
     for (size_t i = 0; i < x->size(); ++i) {
       if (lsq.specs[i].free) {
         (*x)[i] =
@@ -100,7 +101,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     solved_residuals = built.residuals;
     ceres::Solver::Options solver_options;
     SetCeresLinearSolver(options.linear_solver, &solver_options);
-    solver_options.max_num_iterations = options.max_iterations;
+    solver_options.max_num_iterations =
+        iterations > 0 ? iterations : options.max_iterations;
     solver_options.num_threads = Threads(options);
     solver_options.function_tolerance = 1e-6;
     solver_options.parameter_tolerance = 1e-10;
@@ -139,8 +141,55 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
              c.first <= best.final_cost * (1.0 + kSameBasin) + 1e-300;
     });
   };
+  // Screening: every start solved a few iterations, the best few of
+  // those solutions (plausible first, then by cost) solved on; below,
+  // `order` holds the starts the loop solves to convergence.
+  const std::vector<std::vector<double>>* order = &starts;
+  std::vector<std::vector<double>> screened;
+  const bool screen = lsq.screen_keep > 0 && lsq.screen_iterations > 0 &&
+                      starts.size() > static_cast<size_t>(lsq.screen_keep);
+  if (screen) {
+    std::vector<std::pair<double, std::vector<double>>> ranked, unusable;
+    for (size_t s = 0; s < starts.size(); ++s) {
+      if (options.progress) {
+        options.progress("screening start " + std::to_string(s + 1) + " of " +
+                         std::to_string(starts.size()));
+      }
+      std::vector<double> x = starts[s];
+      const ceres::Solver::Summary summary =
+          solve(&x, start_rows, lsq.screen_iterations);
+      if (summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
+          finite_x(x)) {
+        ranked.emplace_back(summary.final_cost, std::move(x));
+      } else {
+        unusable.emplace_back(HUGE_VAL, starts[s]);
+      }
+    }
+    std::stable_sort(
+        ranked.begin(), ranked.end(),
+        [](const auto& a, const auto& b) { return a.first < b.first; });
+    // Plausibility is checked lowest cost first, until enough are found
+    // (the check is a quadrature, fitting/energy.h).
+    const size_t keep = static_cast<size_t>(lsq.screen_keep);
+    std::vector<std::vector<double>> implausible;
+    for (auto& [cost, x] : ranked) {
+      if (screened.size() == keep) break;
+      if (!lsq.plausible || lsq.plausible(x)) {
+        screened.push_back(std::move(x));
+      } else {
+        implausible.push_back(std::move(x));
+      }
+    }
+    for (auto& x : implausible) {
+      if (screened.size() < keep) screened.push_back(std::move(x));
+    }
+    for (auto& [cost, x] : unusable) {
+      if (screened.size() < keep) screened.push_back(std::move(x));
+    }
+    order = &screened;
+  }
   size_t solved = 0;
-  for (size_t s = 0; s < starts.size(); ++s) {
+  for (size_t s = 0; s < order->size(); ++s) {
     if (lsq.stop_after_hits > 0 && best.usable &&
         hits() >= lsq.stop_after_hits) {
       break;
@@ -148,9 +197,9 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     ++solved;
     if (options.progress) {
       options.progress("start " + std::to_string(s + 1) + " of " +
-                       std::to_string(starts.size()));
+                       std::to_string(order->size()));
     }
-    std::vector<double> x = starts[s];
+    std::vector<double> x = (*order)[s];
     const ceres::Solver::Summary summary = solve(&x, start_rows);
     const bool finite = std::isfinite(summary.final_cost) && finite_x(x);
     const bool usable = summary.IsSolutionUsable() && finite;
@@ -170,7 +219,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       // A model value that is not finite is named with its row,
       // at the start when the solver could not leave it.
       std::string where = NonFiniteRow(lsq, x);
-      if (where.empty() && x != starts[s]) where = NonFiniteRow(lsq, starts[s]);
+      if (where.empty() && x != (*order)[s])
+        where = NonFiniteRow(lsq, (*order)[s]);
       if (!where.empty()) {
         best.message = where + " (solver: " + summary.message + ")";
       } else {
@@ -228,7 +278,12 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   best.starts = static_cast<int>(solved);
   if (lsq.stop_after_hits > 0) {
     std::ostringstream rule;
-    rule << solved << " of " << starts.size()
+    if (screen) {
+      rule << starts.size() << " starts screened (at most "
+           << lsq.screen_iterations << " iterations each), the best "
+           << order->size() << " solved on; ";
+    }
+    rule << solved << " of " << order->size()
          << " starts solved; the best cost was reached " << reached
          << " time(s)"
          << (reached >= lsq.stop_after_hits

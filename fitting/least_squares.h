@@ -136,6 +136,15 @@ struct LeastSquaresProblem {
   // it: the same basin), and the rest are skipped. FitReport::starts
   // counts the solves run and FitReport::search says how the rule ended.
   int stop_after_hits = 0;
+  // Screening many starts: when screen_keep > 0 and there are more starts
+  // than that, each start is first solved for at most screen_iterations
+  // iterations, and the best screen_keep of those solutions (plausible
+  // ones first, each kind by cost) are solved on from where they stopped,
+  // in that order (the stopping rule then counts those solves). A basin is
+  // told from a few iterations, and most starts are far from the best:
+  // fitting/cloth_fit.h.
+  int screen_iterations = 0;
+  int screen_keep = 0;
 };
 
 // Problems of more rows than this solve their starts (and their

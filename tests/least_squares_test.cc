@@ -1,6 +1,7 @@
 // The shared least-squares machinery (fitting/least_squares.h): a model
 // value that is not finite during a fit is reported with its row; a
-// multi-start prefers a plausible solution.
+// multi-start prefers a plausible solution; screening many starts solves
+// on the best of them.
 #include "fitting/least_squares.h"
 
 #include <ceres/ceres.h>
@@ -157,6 +158,64 @@ TEST(LeastSquaresTest, MultiStartPrefersAPlausibleSolutionToALowerCost) {
   lsq.plausible = [](const std::vector<double>&) { return false; };
   report = SolveLeastSquares(lsq, {{-2.5}, {2.5}}, SolverOptions(), &x);
   EXPECT_NEAR(x[0], 2.0, 1e-6);
+}
+
+// Screening: every start solved a few iterations, the best solved on.
+// Without it the stopping rule ends at the first start's basin (p = -2,
+// reached once, the rule asks once); with it the start toward p = 2,
+// last in the list, is the one solved on.
+TEST(LeastSquaresTest, ScreeningSolvesOnTheStartsThatDoBestInAFewIterations) {
+  LeastSquaresProblem lsq = TwoBasinProblem();
+  lsq.stop_after_hits = 1;
+  const std::vector<std::vector<double>> starts = {
+      {-2.5}, {-3.0}, {-1.5}, {2.5}};
+  std::vector<double> x;
+  FitReport report = SolveLeastSquares(lsq, starts, SolverOptions(), &x);
+  ASSERT_TRUE(report.usable) << report.message;
+  EXPECT_NEAR(x[0], -2.0, 0.05);
+  EXPECT_EQ(report.starts, 1);
+
+  lsq.screen_iterations = 2;
+  lsq.screen_keep = 1;
+  report = SolveLeastSquares(lsq, starts, SolverOptions(), &x);
+  ASSERT_TRUE(report.usable) << report.message;
+  EXPECT_NEAR(x[0], 2.0, 1e-6);
+  EXPECT_TRUE(report.converged) << report.message;
+  EXPECT_EQ(report.starts, 1);
+  EXPECT_NE(report.search.find("4 starts screened (at most 2 iterations "
+                               "each), the best 1 solved on"),
+            std::string::npos)
+      << report.search;
+  // The screening's iterations count with the solve's.
+  EXPECT_GE(report.iterations, 4);
+
+  // No more starts than are kept: nothing to screen.
+  report = SolveLeastSquares(lsq, {{-2.5}}, SolverOptions(), &x);
+  EXPECT_EQ(report.search.find("screened"), std::string::npos) << report.search;
+  EXPECT_NEAR(x[0], -2.0, 0.05);
+}
+
+// A plausible screened solution is solved on before any implausible one,
+// however much lower the latter's cost.
+TEST(LeastSquaresTest, ScreeningKeepsAPlausibleStartOverALowerCost) {
+  LeastSquaresProblem lsq = TwoBasinProblem();
+  lsq.stop_after_hits = 1;
+  lsq.screen_iterations = 3;
+  lsq.screen_keep = 1;
+  int checks = 0;
+  lsq.plausible = [&checks](const std::vector<double>& x) {
+    ++checks;
+    return x[0] < 0.0;
+  };
+  std::vector<double> x;
+  const FitReport report =
+      SolveLeastSquares(lsq, {{2.5}, {2.2}, {-2.5}}, SolverOptions(), &x);
+  ASSERT_TRUE(report.usable) << report.message;
+  EXPECT_NEAR(x[0], -2.0, 0.05);
+  // Checked lowest cost first until one is plausible (all three here),
+  // then the solution solved on: 4 checks, not one per start and solve
+  // beyond that.
+  EXPECT_EQ(checks, 4);
 }
 
 }  // namespace
