@@ -80,7 +80,8 @@ class ModelResidual {
   }
 
   template <typename T>
-  bool operator()(const T* const* blocks, T* residual) const {
+  __attribute__((flatten)) bool operator()(const T* const* blocks,
+                                           T* residual) const {
     for (size_t k = begin_; k < end_; ++k) {
       const size_t i = Row(k);
       const FitRow& row = (*rows_)[i];
