@@ -22,6 +22,7 @@
 #include <memory>
 #include <vector>
 
+#include "fitting/flatten_internal.h"
 #include "fitting/least_squares.h"
 #include "fitting/residual_weight.h"
 #include "models/math.h"
@@ -80,8 +81,7 @@ class ModelResidual {
   }
 
   template <typename T>
-  __attribute__((flatten)) bool operator()(const T* const* blocks,
-                                           T* residual) const {
+  CLOTHFIT_FLATTEN bool operator()(const T* const* blocks, T* residual) const {
     for (size_t k = begin_; k < end_; ++k) {
       const size_t i = Row(k);
       const FitRow& row = (*rows_)[i];
