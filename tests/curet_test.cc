@@ -215,9 +215,11 @@ TEST(CuretFits, ClothWithFreedomsBeatsTwoLafortuneLobesHeldOutOnLinen) {
 // the mid-forward rows (the threads' narrow forward peak); with a free eta
 // per thread instead, the Fresnel term's rise toward grazing (eta just
 // above 1) shapes the surface reflection, and the same 17 parameters fit
-// the table and predict held-out rows better. (Whether it also beats two
-// Lafortune lobes depends on the basin the search reaches: docs/curet.md.)
-TEST(CuretFits, FreeEtaFitsLambswoolBetterThanFreeCoverages) {
+// the table within 0.10 and predict held-out rows better, better than
+// two Lafortune lobes too. (Solving 4 starts in full instead of screening
+// 8, the search stopped at 0.103 in-sample and lost to the lobes:
+// docs/fitting.md.)
+TEST(CuretFits, FreeEtaFitsLambswoolBelowTenPercentAndBeatsTheLobes) {
   const FabricSelection s = SelectOnCuret("curet_22_lambswool.csv");
   const CandidateReport* lobes =
       FindCandidate(s.selection, "lafortune 2 lobe(s), no lookup table");
@@ -229,7 +231,8 @@ TEST(CuretFits, FreeEtaFitsLambswoolBetterThanFreeCoverages) {
   EXPECT_TRUE(eta->converged) << eta->note;
   EXPECT_LT(eta->relative_rms, 0.9 * coverage->relative_rms);
   EXPECT_LT(eta->heldout_relative_rms, 0.9 * coverage->heldout_relative_rms);
-  EXPECT_LT(eta->heldout_relative_rms, 1.05 * lobes->heldout_relative_rms);
+  EXPECT_LT(eta->relative_rms, 0.10);
+  EXPECT_LT(eta->heldout_relative_rms, lobes->heldout_relative_rms);
   EXPECT_LE(eta->free_parameters, 2 * lobes->free_parameters);
 }
 
@@ -272,7 +275,8 @@ double RugBFoldError(const MeasurementTable& table, const ClothParams& whole,
 // (fitting/fabric_select.h HeldInFolds). The held-out error fit --model
 // auto reports is that of these folds, recomputed here; it stays near the
 // in-sample error (no fold leaves the basin for another, as rug a's
-// free-coverage folds do: 0.758 held-out against 0.073 in-sample), and
+// free-coverage folds did in one run: 0.758 held-out against 0.073
+// in-sample), and
 // the cloth predicts the held-out rows better than two lobes. Whether
 // holding beats freeing those entries depends on the basin the search
 // finds: 0.16 against 0.17 in one run, 0.187 against 0.176 in another,
