@@ -38,7 +38,8 @@ struct ClothFitOptions {
   // or eta free: the points of a space-filling design over them besides
   // the initial weave (fitting/cloth_search.h), and the multi-start's
   // stopping rule (stop once the best cost was reached this many times;
-  // solve_starts is then the most solves).
+  // solve_starts is then the most starts, screened as below when more
+  // than screen_keep).
   // 512: of 22 CUReT fits (11 fabrics, free coverages or eta), 4 solves
   // from 512 points ended lower than from 128 on 11, higher on 5, equal
   // on 6; 1024 and 2048 points did no better (docs/fitting.md).
