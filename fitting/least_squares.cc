@@ -118,6 +118,13 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     }
     return true;
   };
+  // A solve ended at a solution that can be used: Ceres says so and its
+  // cost and parameters are finite.
+  auto usable_solve = [&](const ceres::Solver::Summary& summary,
+                          const std::vector<double>& x) {
+    return summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
+           finite_x(x);
+  };
   // A solve's outcome as the best so far.
   auto take = [&](const ceres::Solver::Summary& summary,
                   const std::vector<double>& x) {
@@ -149,7 +156,8 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
   const bool screen = lsq.screen_keep > 0 && lsq.screen_iterations > 0 &&
                       starts.size() > static_cast<size_t>(lsq.screen_keep);
   if (screen) {
-    std::vector<std::pair<double, std::vector<double>>> ranked, unusable;
+    std::vector<std::pair<double, std::vector<double>>> ranked;
+    std::vector<std::vector<double>> unusable;  // their starts
     for (size_t s = 0; s < starts.size(); ++s) {
       if (options.progress) {
         options.progress("screening start " + std::to_string(s + 1) + " of " +
@@ -158,11 +166,10 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       std::vector<double> x = starts[s];
       const ceres::Solver::Summary summary =
           solve(&x, start_rows, lsq.screen_iterations);
-      if (summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
-          finite_x(x)) {
+      if (usable_solve(summary, x)) {
         ranked.emplace_back(summary.final_cost, std::move(x));
       } else {
-        unusable.emplace_back(HUGE_VAL, starts[s]);
+        unusable.push_back(starts[s]);
       }
     }
     std::stable_sort(
@@ -183,7 +190,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     for (auto& x : implausible) {
       if (screened.size() < keep) screened.push_back(std::move(x));
     }
-    for (auto& [cost, x] : unusable) {
+    for (auto& x : unusable) {
       if (screened.size() < keep) screened.push_back(std::move(x));
     }
     order = &screened;
@@ -241,8 +248,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
       lsq.reweight(best_x);
       std::vector<double> x = best_x;
       const ceres::Solver::Summary summary = solve(&x, which);
-      if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost) ||
-          !finite_x(x)) {
+      if (!usable_solve(summary, x)) {
         break;  // keep the last usable solution (its weights differ a little)
       }
       double change = 0.0;
@@ -265,8 +271,7 @@ FitReport SolveLeastSquares(const LeastSquaresProblem& lsq,
     }
     std::vector<double> x = best_x;
     const ceres::Solver::Summary summary = solve(&x, ResidualRows());
-    if (summary.IsSolutionUsable() && std::isfinite(summary.final_cost) &&
-        finite_x(x)) {
+    if (usable_solve(summary, x)) {
       take(summary, x);
       reweight_passes(ResidualRows());
     } else {
