@@ -31,7 +31,7 @@ glm::dvec3 Weight2(const Sample& s) {
 // The slab's value at sample i; with a shared tau, entry 0 of the block is
 // the tau of every channel.
 struct SlabEvaluator {
-  std::vector<Sample> samples;
+  FitRows samples;
   bool shared_tau;
 
   template <typename T>
@@ -39,7 +39,7 @@ struct SlabEvaluator {
     SlabParamsT<T> p;
     FromArray(blocks[0], &p);
     if (shared_tau) p.tau = Vec3<T>(blocks[0][0]);
-    const Sample& s = samples[i];
+    const Sample s = samples[i];
     return Value(p, s.row->wi, s.row->wo, s.quantity);
   }
 };
@@ -54,13 +54,11 @@ SlabParams FromX(const std::vector<double>& x, bool shared_tau,
   return p;
 }
 
-std::vector<Sample> Samples(const std::vector<MeasurementTable>& tables,
-                            const std::vector<Weighting>& weightings) {
-  std::vector<Sample> samples;
+FitRows Samples(const std::vector<MeasurementTable>& tables,
+                const std::vector<Weighting>& weightings) {
+  FitRows samples;
   for (size_t t = 0; t < tables.size(); ++t) {
-    for (const FitRow& row : TableFitRows(tables[t], weightings[t])) {
-      samples.push_back(row);
-    }
+    samples.Append(tables[t], weightings[t]);
   }
   return samples;
 }
@@ -68,7 +66,7 @@ std::vector<Sample> Samples(const std::vector<MeasurementTable>& tables,
 // Starting points: a log grid over tau (with the initial value) and, for
 // each tau, the albedo per channel in closed form (the model is linear in
 // it; direct-transmittance rows do not depend on it).
-std::vector<std::vector<double>> Starts(const std::vector<Sample>& samples,
+std::vector<std::vector<double>> Starts(const FitRows& samples,
                                         const std::vector<ParameterSpec>& specs,
                                         const SlabParams& init, int channels,
                                         bool shared_tau, int keep) {
@@ -160,7 +158,7 @@ struct Baseline {
   int parameters = 0;
 };
 
-Baseline FitBaseline(const std::vector<Sample>& samples, int channels,
+Baseline FitBaseline(const FitRows& samples, int channels,
                      bool back_lit_black) {
   glm::dvec3 skk(0.0), skv(0.0), sd(0.0), sdv(0.0);
   bool any_bsdf = false, any_direct = false;
@@ -210,9 +208,8 @@ std::string Format(const char* format, double a, double b = 0.0) {
   return text;
 }
 
-SlabValidity Validate(const std::vector<Sample>& samples, int channels,
-                      bool sigma_known, const SlabParams& p,
-                      const FitReport& report) {
+SlabValidity Validate(const FitRows& samples, int channels, bool sigma_known,
+                      const SlabParams& p, const FitReport& report) {
   SlabValidity v;
   v.sigma_known = sigma_known;
   double cost = 0.0, se = 0.0, ss = 0.0;
@@ -371,7 +368,7 @@ SlabFitResult FitSlab(const std::vector<MeasurementTable>& tables,
   }
   lsq.block_sizes = {FlatSize(SlabParams())};
   lsq.sigma_known = sigma_known;
-  const std::vector<Sample> samples = Samples(tables, weightings);
+  const FitRows samples = Samples(tables, weightings);
   ResidualBlocks blocks;
   blocks.used = {0};
   SetModelResiduals(

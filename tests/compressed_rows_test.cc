@@ -30,7 +30,7 @@ struct Toy {
   MeasurementTable table;
   std::unique_ptr<Weighting> weighting;
   std::shared_ptr<ToyEvaluator> evaluator = std::make_shared<ToyEvaluator>();
-  std::vector<FitRow> rows;
+  FitRows rows;
 };
 
 // n rows with values off the model at (1, 0.5, 0.1) by a deterministic
@@ -48,10 +48,10 @@ std::unique_ptr<Toy> MakeToy(int n) {
   absolute.kind = NoiseKind::kAbsolute;
   absolute.level = 1.0;
   toy->weighting = std::make_unique<Weighting>(toy->table, absolute);
-  for (int i = 0; i < n; ++i) {
-    toy->rows.push_back({&toy->table.rows[i], Quantity::kBrdf, 3,
-                         toy->weighting.get(), glm::dvec3(1.0, 0.5, 3.0)});
-  }
+  // The table's quantity (BRDF) and channels (3); residual factors that
+  // differ per channel.
+  toy->rows = FitRows(toy->table, *toy->weighting);
+  for (int i = 0; i < n; ++i) toy->rows.SetScale(i, glm::dvec3(1.0, 0.5, 3.0));
   return toy;
 }
 
