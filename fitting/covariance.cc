@@ -44,6 +44,43 @@ ColumnCovariance CovarianceOfColumns(const Eigen::MatrixXd& j,
   }
   if (!out.not_identifiable.empty()) {
     std::sort(out.not_identifiable.begin(), out.not_identifiable.end());
+    const int held = static_cast<int>(out.not_identifiable.size());
+    if (held == n || sv.size() < n) return out;
+    // The others' covariance with these held at their values: that of
+    // the Jacobian's other columns (which may name more).
+    std::vector<int> kept;
+    for (int c = 0; c < n; ++c) {
+      if (!std::binary_search(out.not_identifiable.begin(),
+                              out.not_identifiable.end(), c)) {
+        kept.push_back(c);
+      }
+    }
+    RowBlockVisitor kept_rows = nullptr;
+    if (rows) {
+      kept_rows = [&](const auto& visit) {
+        rows([&](const Eigen::MatrixXd& jb, const Eigen::VectorXd& rb) {
+          const Eigen::MatrixXd kept_jb = jb(Eigen::all, kept);
+          visit(kept_jb, rb);
+        });
+      };
+    }
+    const Eigen::MatrixXd kept_j = j(Eigen::all, kept);
+    const ColumnCovariance sub =
+        CovarianceOfColumns(kept_j, r, sigma_known, cost, residuals, kept_rows);
+    for (int c : sub.not_identifiable) flag(kept[c]);
+    std::sort(out.not_identifiable.begin(), out.not_identifiable.end());
+    if (sub.covariance.rows() != static_cast<int>(kept.size())) return out;
+    out.conditional = true;
+    out.covariance = Eigen::MatrixXd::Zero(n, n);
+    out.covariance(kept, kept) = sub.covariance;
+    if (sub.sandwich_covariance.rows() == sub.covariance.rows()) {
+      out.sandwich_covariance = Eigen::MatrixXd::Zero(n, n);
+      out.sandwich_covariance(kept, kept) = sub.sandwich_covariance;
+    }
+    for (size_t k = 0; k < kept.size(); ++k) {
+      out.stddev[kept[k]] = sub.stddev[k];
+      out.sandwich[kept[k]] = sub.sandwich[k];
+    }
     return out;
   }
   const int dof = residuals - n;

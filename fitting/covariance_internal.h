@@ -11,11 +11,18 @@ namespace clothfit {
 
 // What a Jacobian's columns come to: per column, its standard deviation
 // and (when asked for) the sandwich estimate, -1 where not available; the
-// columns the data cannot determine (then no column has a standard
-// deviation).
+// columns the data cannot determine. Those have no standard deviation;
+// the others' are then conditional: their covariance with the columns
+// that are not identifiable held at their values (the covariance of the
+// Jacobian without those columns; the matrices below are 0 in their rows
+// and columns). A column with no effect (zero) changes nothing by being
+// held; for a combination the data nearly determine, the conditional
+// standard deviations are a lower bound. None when every column is named
+// or J has fewer rows than columns.
 struct ColumnCovariance {
   std::vector<double> stddev, sandwich;
   std::vector<int> not_identifiable;
+  bool conditional = false;
   // The whole matrices (columns x columns; empty where not available), for
   // a report in other variables (delta method, least_squares.cc).
   Eigen::MatrixXd covariance, sandwich_covariance;

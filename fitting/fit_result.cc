@@ -157,6 +157,7 @@ std::string FitReportJson(const FitReport& r) {
   j["fixed"] = fixed;
   if (!at_bound.empty()) j["at_bound"] = at_bound;
   if (!r.identifiability.empty()) j["identifiability"] = r.identifiability;
+  if (r.stddev_conditional) j["stddev_conditional"] = true;
   return j.dump();
 }
 
@@ -270,6 +271,9 @@ std::string FitReportText(const FitReport& r,
     out << "\n";
   }
   if (!r.identifiability.empty()) out << r.identifiability << "\n";
+  if (r.stddev_conditional) {
+    out << "the other standard deviations hold these at their values\n";
+  }
   if (!r.usable || !r.converged) out << "reason: " << r.message << "\n";
   return out.str();
 }

@@ -135,6 +135,9 @@ struct FitReport {
   // Empty when the covariance exists; otherwise names the parameters the
   // data cannot determine, e.g. "not identifiable: eta, kd".
   std::string identifiability;
+  // The other parameters' standard deviations hold those at their values
+  // (fitting/covariance_internal.h); false when there are none.
+  bool stddev_conditional = false;
 };
 
 // Records the weighting in effect in the report, after the solve: an

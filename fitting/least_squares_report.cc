@@ -150,9 +150,14 @@ void Report(const LeastSquaresProblem& lsq, const SolverOptions& options,
         stddev[free_index[c]] = cov.stddev[c];
         sandwich[free_index[c]] = cov.sandwich[c];
       }
-      if (lsq.reported && cov.not_identifiable.empty()) {
+      if (lsq.reported && cov.covariance.rows() == n) {
         ReportedStddev(lsq, x, free_index, cov, &stddev, &sandwich);
+        // An entry held for the others' covariance has none of its own.
+        for (int c : cov.not_identifiable) {
+          stddev[free_index[c]] = sandwich[free_index[c]] = -1.0;
+        }
       }
+      report->stddev_conditional = cov.conditional;
       if (!cov.not_identifiable.empty()) {
         report->identifiability = "not identifiable:";
         for (size_t k = 0; k < cov.not_identifiable.size(); ++k) {

@@ -381,7 +381,8 @@ TEST(ClothFitOneChannel, ReportedGreenAndBlueAlbedosFollowRed) {
 }
 
 // A thread with coverage 0 does not enter rho (eq. 12-13): its parameters
-// are undetermined; the other thread's are determined.
+// are undetermined and have no standard deviation; the other thread's are
+// determined, and have theirs (with the first held).
 TEST(ClothFitIdentifiability, ZeroCoverageThreadIsNamedAndTheOtherIsNot) {
   ClothParams cloth = Preset("linen_plain");
   cloth.threads[0].coverage = 0.66;
@@ -399,11 +400,16 @@ TEST(ClothFitIdentifiability, ZeroCoverageThreadIsNamedAndTheOtherIsNot) {
       EXPECT_TRUE(Contains(named, p.name))
           << p.name << " not named in '" << result.report.identifiability
           << "'";
+      EXPECT_LT(p.stddev, 0.0) << p.name;
     } else {
       EXPECT_FALSE(Contains(named, p.name))
           << p.name << " named in '" << result.report.identifiability << "'";
+      EXPECT_GT(p.stddev, 0.0) << p.name;
     }
   }
+  EXPECT_TRUE(result.report.stddev_conditional);
+  EXPECT_NE(FitReportText(result.report).find("hold these at their values"),
+            std::string::npos);
 }
 
 // Free coverages are reparameterised by stick-breaking (fitting/
