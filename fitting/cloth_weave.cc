@@ -160,13 +160,14 @@ void FillRowSamples(const ClothParams& cloth,
   if (!IsReflectionRow(row)) return;  // reflection only
   for (size_t j = 0; j < cloth.threads.size(); ++j) {
     const ClothThread& th = cloth.threads[j];
+    const ThreadLobeParams<double> lobe_params(th.params);
     for (double offset : th.offsets_deg) {
       const TangentSample<double> sample = ComputeTangentSample(
           th.direction, cloth.rotation_deg, offset, row.wi, row.wo);
       out->per_thread[j].push_back(sample);
       if (eta_fixed[j]) {
         out->fresnel[j].push_back(
-            sample.weight > 0.0 ? ThreadFresnel(sample.geometry, th.params.eta)
+            sample.weight > 0.0 ? ThreadFresnel(sample.geometry, lobe_params)
                                 : 0.0);
       }
     }

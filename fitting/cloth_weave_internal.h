@@ -101,12 +101,13 @@ struct RowSamples {
   std::vector<std::vector<double>> fresnel;
 
   int Count(size_t j) const { return static_cast<int>(per_thread[j].size()); }
+  int Total(size_t j) const { return Count(j); }
   const TangentSample<double>& Get(size_t j, int k) const {
     return per_thread[j][k];
   }
   template <typename T>
   ThreadLobes<T> Lobes(size_t j, int k, const TangentSample<double>& sample,
-                       const ThreadParamsT<T>& params) const {
+                       const ThreadLobeParams<T>& params) const {
     if (fresnel[j].empty()) return ThreadLobesOf(sample.geometry, params);
     return ThreadLobesGivenFresnel(sample.geometry, fresnel[j][k], params);
   }

@@ -48,7 +48,8 @@ R CosineShare(const R& coverage) {
 
 // The mixture's density at wi (unit) given wo (unit), per steradian, for a
 // cloth whose sample frames come from `frames` (as in ClothRhoWithFrames:
-// frames.Count(j), frames.Get(j, k)). Zero below the surface.
+// frames.Count(j), frames.Get(j, k) and its repeats, frames.Total(j)).
+// Zero below the surface.
 template <typename R, typename Frames>
 R ClothWiPdfWithFrames(const ClothParamsT<R>& cloth, const Frames& frames,
                        const Vec3<R>& wo, const Vec3<R>& wi) {
@@ -62,12 +63,13 @@ R ClothWiPdfWithFrames(const ClothParamsT<R>& cloth, const Frames& frames,
     const ClothThreadT<R>& th = cloth.threads[j];
     const int count = frames.Count(j);
     if (count == 0 || !(th.coverage > R(0.0))) continue;
-    const R weight = (R(1.0) - c) * th.coverage / coverage / R(count);
+    const R weight = (R(1.0) - c) * th.coverage / coverage / R(frames.Total(j));
     for (int k = 0; k < count; ++k) {
       const TangentFrame<R> f = frames.Get(j, k);
       const ThreadCone<R> cone =
           MakeThreadCone(f.t, f.n, th.params.gamma_s_deg, wo);
-      pdf += weight * (ThreadConePdf(cone, wi) + ThreadConePdf(cone, mirrored));
+      pdf += weight * R(f.repeats) *
+             (ThreadConePdf(cone, wi) + ThreadConePdf(cone, mirrored));
     }
   }
   return pdf;
@@ -94,10 +96,11 @@ Vec3<R> SampleClothWiWithFrames(const ClothParamsT<R>& cloth,
     const ClothThreadT<R>& th = cloth.threads[j];
     const int count = frames.Count(j);
     if (count == 0 || !(th.coverage > R(0.0))) continue;
-    const R step = th.coverage / R(count);
+    const R per_sample = th.coverage / R(frames.Total(j));
     for (int k = 0; k < count && x >= R(0.0); ++k) {
       chosen = &th;
       frame = frames.Get(j, k);
+      const R step = per_sample * R(frame.repeats);
       v = Clamp(x / step, R(0.0), kOneBelow<R>);
       x -= step;
     }

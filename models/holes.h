@@ -40,9 +40,6 @@
 
 namespace clothfit {
 
-template <typename T>
-using Vec2 = glm::vec<2, T>;
-
 // The nine counts of a texel (level 0) or of a block of texels (a mip
 // level), in this order (also the order of the EXR channels).
 enum HoleCountIndex : int {

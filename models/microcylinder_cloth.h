@@ -205,7 +205,9 @@ struct PsiPlane {
   bool valid = false;
   Vec3<G> qi, qo;
   G qi_len, qo_len;
-  G u;  // MaskingBlend(psi_d)
+  G inv_qi_len, inv_qo_len;
+  G wi_b, wo_b;  // wi.b and wo.b (ProjectOnThread)
+  G u;           // MaskingBlend(psi_d)
 };
 
 // The direction of a thread in the surface frame: +x (warp, "u") or +y
@@ -228,6 +230,10 @@ Vec3<G> ThreadAxis(ThreadDirection direction, const G& rotation_deg) {
 template <typename G>
 struct TangentFrame {
   Vec3<G> t, n;
+  // How many of the thread's samples the frame stands for: 1, or more
+  // where a prepared material merges samples at the same offset (the
+  // satin's Table 3 offsets repeat -32, 0 and 32 degrees).
+  int repeats = 1;
 };
 
 template <typename G>
@@ -239,7 +245,7 @@ TangentFrame<G> MakeTangentFrame(ThreadDirection direction,
   const Vec3<G> z(G(0.0), G(0.0), G(1.0));
   const G psi = Radians(offset_deg);
   const G c = cos(psi), s = sin(psi);
-  return {d * c + z * s, z * c - d * s};
+  return {d * c + z * s, z * c - d * s, 1};
 }
 
 // The psi plane of the thread of frame f (any of its samples).
@@ -258,6 +264,10 @@ PsiPlane<G> MakePsiPlane(const TangentFrame<G>& f, const Vec3<G>& wi,
   plane.valid = true;
   plane.qi_len = sqrt(qi2);
   plane.qo_len = sqrt(qo2);
+  plane.inv_qi_len = G(1.0) / plane.qi_len;
+  plane.inv_qo_len = G(1.0) / plane.qo_len;
+  plane.wi_b = glm::dot(wi, b);
+  plane.wo_b = glm::dot(wo, b);
   plane.u = MaskingBlend(
       AngleBetween(plane.qi, plane.qo, plane.qi_len * plane.qo_len));
   return plane;
@@ -276,17 +286,22 @@ TangentSample<G> ComputeTangentSample(const TangentFrame<G>& f,
   TangentSample<G> out;
   if (!plane.valid) return out;  // contributes nothing
   ThreadGeometry<G>& g = out.geometry;
-  Vec3<G> pi, po;
-  if (!ProjectOnThread(f.t, f.n, wi, wo, &g, &pi, &po)) return out;
+  ThreadAzimuths<G> azimuths;
+  if (!ProjectOnThread(f.t, f.n, plane.wi_b, plane.wo_b, wi, wo, &g,
+                       &azimuths)) {
+    return out;
+  }
   out.valid = true;
-  out.reweight = MaskingTermWith(G(glm::dot(plane.qi, f.n) / plane.qi_len),
-                                 G(glm::dot(plane.qo, f.n) / plane.qo_len),
+  // cos psi of eq. 10: q.n / |q| with q.n = w.n = cos(phi) cos(theta) (b
+  // is normal to n).
+  out.reweight = MaskingTermWith(G(glm::dot(wi, f.n) * plane.inv_qi_len),
+                                 G(glm::dot(wo, f.n) * plane.inv_qo_len),
                                  [&] { return plane.u; });
   if (!(out.reweight > G(0.0))) return out;
-  ThreadAzimuthDifference(pi, po, &g);
+  ThreadAzimuthDifference(azimuths, &g);
   out.weight = MaskingTerm(g.cos_phi_i, g.cos_phi_o, g.phi_d) * out.reweight *
                g.cos_theta_i;
-  if (out.weight > G(0.0)) ThreadHalfAngles(pi, po, &g);
+  if (out.weight > G(0.0)) ThreadHalfAngles(azimuths, &g);
   return out;
 }
 
@@ -302,25 +317,33 @@ TangentSample<G> ComputeTangentSample(ThreadDirection direction,
 
 // A cloth's samples seen from (wi, wo), computed as ThreadSums asks for
 // them (the Samples of ClothRhoFromSamples): frames.Count(j) and
-// frames.Get(j, k) give thread j's sample frames; the psi plane is
-// computed once per thread, at the first sample asked for.
+// frames.Get(j, k) give thread j's distinct sample frames, frames.Total(j)
+// the number of samples they stand for (the sum of their repeats); the psi
+// plane is computed once per thread, at the first sample asked for. A
+// frame's repeats multiply its sample's weights.
 template <typename G, typename Frames>
 class SamplesFromFrames {
  public:
   SamplesFromFrames(const Frames& frames, const Vec3<G>& wi, const Vec3<G>& wo)
       : frames_(frames), wi_(wi), wo_(wo) {}
   int Count(size_t j) const { return frames_.Count(j); }
+  int Total(size_t j) const { return frames_.Total(j); }
   TangentSample<G> Get(size_t j, int k) const {
     const TangentFrame<G> f = frames_.Get(j, k);
     if (j != plane_thread_) {
       plane_ = MakePsiPlane(f, wi_, wo_);
       plane_thread_ = j;
     }
-    return ComputeTangentSample(f, plane_, wi_, wo_);
+    TangentSample<G> sample = ComputeTangentSample(f, plane_, wi_, wo_);
+    if (f.repeats != 1) {
+      sample.weight *= G(f.repeats);
+      sample.reweight *= G(f.repeats);
+    }
+    return sample;
   }
   template <typename T>
   ThreadLobes<T> Lobes(size_t, int, const TangentSample<G>& sample,
-                       const ThreadParamsT<T>& params) const {
+                       const ThreadLobeParams<T>& params) const {
     return ThreadLobesOf(sample.geometry, params);
   }
 
@@ -335,26 +358,30 @@ class SamplesFromFrames {
 // Thread j's sums of eq. 11-12 over its samples: S_j = (1/T_j) sum_t f_s M
 // P cos(theta_i) and W_j = (1/T_j) sum_t P (both 0 without samples).
 // `samples.Count(j)` and `samples.Get(j, k)` give thread j's samples (a
-// TangentSample<G>), and `samples.Lobes(j, k, sample, params)` their
-// ThreadLobes (ThreadLobesOf, or the same with a Fresnel term computed
-// once). The lobes are summed as scalars and the albedo applied once.
+// TangentSample<G>, its weights multiplied by the number of samples it
+// stands for), `samples.Total(j)` that number T_j summed, and
+// `samples.Lobes(j, k, sample, lobe_params)` their ThreadLobes
+// (ThreadLobesOf, or the same with a Fresnel term computed once). The
+// lobes are summed as scalars and the albedo applied once.
 template <typename T, typename G, typename Samples>
 void ThreadSums(const ThreadParamsT<T>& params, const Samples& samples,
                 size_t j, Vec3<T>* s_j, G* w_j) {
   T surface(0.0), volume(0.0);
   G w(0.0);
+  const ThreadLobeParams<T> lobe_params(params);
   const int count = samples.Count(j);
   for (int k = 0; k < count; ++k) {
     const TangentSample<G>& sample = samples.Get(j, k);
     if (!sample.valid) continue;
     w += sample.reweight;
     if (sample.weight > G(0.0)) {
-      const ThreadLobes<T> lobes = samples.Lobes(j, k, sample, params);
+      const ThreadLobes<T> lobes = samples.Lobes(j, k, sample, lobe_params);
       surface += lobes.surface * T(sample.weight);
       volume += lobes.volume * T(sample.weight);
     }
   }
-  const double inv_count = count > 0 ? 1.0 / count : 0.0;
+  const int total = samples.Total(j);
+  const double inv_count = total > 0 ? 1.0 / total : 0.0;
   *s_j = (Vec3<T>(surface) + params.albedo * volume) * T(inv_count);
   *w_j = w * G(inv_count);
 }
@@ -421,6 +448,7 @@ struct ClothFramesOnTheFly {
   int Count(size_t j) const {
     return static_cast<int>(cloth.threads[j].offsets_deg.size());
   }
+  int Total(size_t j) const { return Count(j); }
   TangentFrame<T> Get(size_t j, int k) const {
     const ClothThreadT<T>& th = cloth.threads[j];
     return MakeTangentFrame(th.direction, cloth.rotation_deg,

@@ -123,22 +123,44 @@ void VisitParams(ThreadParamsT<T>& p, F&& f) {
 // Entries of the flat layout (models/params.h ToArray).
 inline constexpr int kThreadFlatSize = 7;
 
-// Unit-area Gaussian of width s (radians), docs/models.md g(s, x).
+// Unit-area Gaussian of width s (radians), docs/models.md g(s, x), with
+// its constants computed once: a thread's lobes evaluate it at every
+// tangent sample.
+template <typename T>
+struct Gaussian {
+  T inv_two_var;  // 1 / (2 s^2)
+  T peak;         // 1 / (s sqrt(2 pi))
+
+  explicit Gaussian(const T& s)
+      : inv_two_var(T(1.0) / (T(2.0) * s * s)),
+        peak(T(1.0) / (s * T(std::sqrt(2.0 * kPi)))) {}
+  template <typename X>
+  T operator()(const X& x) const {
+    return peak * ExpNeg(T(x * x) * inv_two_var);
+  }
+};
+
 template <typename T>
 T NormalizedGaussian(const T& s, const T& x) {
-  return ExpNeg(x * x / (T(2.0) * s * s)) / (s * T(std::sqrt(2.0 * kPi)));
+  return Gaussian<T>(s)(x);
 }
 
 // Unpolarised Fresnel reflectance of a dielectric of relative index eta > 1
-// for cos_theta in [0, 1] (Cook and Torrance 1982, the exact form).
-template <typename T>
-T FresnelDielectric(const T& cos_theta, const T& eta) {
+// for cos_theta in [0, 1] (Cook and Torrance 1982, the exact form), given
+// eta^2 - 1.
+template <typename T, typename C>
+T FresnelDielectricGiven(const C& cos_theta, const T& eta2_minus_1) {
   using std::sqrt;
-  const T c = Clamp(cos_theta, T(0.0), T(1.0));
-  const T g = sqrt(eta * eta - T(1.0) + c * c);
+  const T c(Clamp(cos_theta, C(0.0), C(1.0)));
+  const T g = sqrt(eta2_minus_1 + c * c);
   const T a = T(0.5) * Sqr(g - c) / Sqr(g + c);
   const T b = T(1.0) + Sqr(c * (g + c) - T(1.0)) / Sqr(c * (g - c) + T(1.0));
   return a * b;
+}
+
+template <typename T>
+T FresnelDielectric(const T& cos_theta, const T& eta) {
+  return FresnelDielectricGiven(cos_theta, T(eta * eta - T(1.0)));
 }
 
 // Angles of a (wi, wo) pair relative to one thread (tangent t, local normal
@@ -161,41 +183,53 @@ struct ThreadGeometry {
 // Projections shorter than this (squared) count as zero length.
 inline constexpr double kMinProjectionLength2 = 1e-24;
 
+// The azimuths of wi and wo about a thread: unit vectors (cos phi, sin phi)
+// in the normal plane of t, in its basis (n, b).
+template <typename T>
+struct ThreadAzimuths {
+  Vec2<T> i, o;
+};
+
 // The steps of ComputeThreadGeometry, so that a cloth's tangent sample
 // (models/microcylinder_cloth.h) takes only those its masking terms leave
 // non-zero; each sets the fields its comment names.
 
-// The projections of wi and wo on the normal plane of t (azimuth phi):
-// sin/cos theta, cos phi against n, and `valid`. pi and po receive the
-// projections. False (valid stays false) where one has no azimuth.
+// The projections of wi and wo on the normal plane of t: sin/cos theta,
+// cos phi against n, and `valid`; `azimuths` receives their directions.
+// The projection of w has coordinates (w.n, w.b) in the basis (n, b), so
+// cos^2 theta = (w.n)^2 + (w.b)^2, free of the cancellation of
+// |w - (w.t) t| near t. wi_b = wi.b and wo_b = wo.b are given: the tangent
+// samples of a cloth's thread share b. False (valid stays false) where a
+// projection has no azimuth.
 template <typename T>
-bool ProjectOnThread(const Vec3<T>& t, const Vec3<T>& n, const Vec3<T>& wi,
-                     const Vec3<T>& wo, ThreadGeometry<T>* g, Vec3<T>* pi,
-                     Vec3<T>* po) {
+bool ProjectOnThread(const Vec3<T>& t, const Vec3<T>& n, const T& wi_b,
+                     const T& wo_b, const Vec3<T>& wi, const Vec3<T>& wo,
+                     ThreadGeometry<T>* g, ThreadAzimuths<T>* azimuths) {
   using std::sqrt;
   g->sin_theta_i = glm::dot(wi, t);
   g->sin_theta_o = glm::dot(wo, t);
-  *pi = wi - t * g->sin_theta_i;
-  *po = wo - t * g->sin_theta_o;
-  const T pi2 = glm::dot(*pi, *pi);
-  const T po2 = glm::dot(*po, *po);
+  const T wi_n = glm::dot(wi, n), wo_n = glm::dot(wo, n);
+  const T pi2 = wi_n * wi_n + wi_b * wi_b;
+  const T po2 = wo_n * wo_n + wo_b * wo_b;
   const T kMin(kMinProjectionLength2);
   if (!(pi2 > kMin && po2 > kMin)) return false;
   g->valid = true;
   g->cos_theta_i = sqrt(pi2);
   g->cos_theta_o = sqrt(po2);
-  g->cos_phi_i = glm::dot(*pi, n) / g->cos_theta_i;
-  g->cos_phi_o = glm::dot(*po, n) / g->cos_theta_o;
+  const T inv_i = T(1.0) / g->cos_theta_i, inv_o = T(1.0) / g->cos_theta_o;
+  g->cos_phi_i = wi_n * inv_i;
+  g->cos_phi_o = wo_n * inv_o;
+  azimuths->i = Vec2<T>(g->cos_phi_i, wi_b * inv_i);
+  azimuths->o = Vec2<T>(g->cos_phi_o, wo_b * inv_o);
   return true;
 }
 
-// phi_d from the projections, where both cos phi are positive (elsewhere
-// the masking term it enters vanishes and it stays 0).
+// phi_d from the azimuths, where both cos phi are positive (elsewhere the
+// masking term it enters vanishes and it stays 0).
 template <typename T>
-void ThreadAzimuthDifference(const Vec3<T>& pi, const Vec3<T>& po,
-                             ThreadGeometry<T>* g) {
+void ThreadAzimuthDifference(const ThreadAzimuths<T>& a, ThreadGeometry<T>* g) {
   if (g->cos_phi_i > T(0.0) && g->cos_phi_o > T(0.0)) {
-    g->phi_d = AngleBetween(pi, po, g->cos_theta_i * g->cos_theta_o);
+    g->phi_d = AngleBetween(a.i, a.o, T(1.0));
   }
 }
 
@@ -207,8 +241,7 @@ void ThreadAzimuthDifference(const Vec3<T>& pi, const Vec3<T>& po,
 // theta_i + theta_o lies in (-pi, pi) for valid geometry, so the first
 // denominator is positive.
 template <typename T>
-void ThreadHalfAngles(const Vec3<T>& pi, const Vec3<T>& po,
-                      ThreadGeometry<T>* g) {
+void ThreadHalfAngles(const ThreadAzimuths<T>& a, ThreadGeometry<T>* g) {
   using std::atan;
   const T cos_sum =
       g->cos_theta_i * g->cos_theta_o - g->sin_theta_i * g->sin_theta_o;
@@ -218,10 +251,10 @@ void ThreadHalfAngles(const Vec3<T>& pi, const Vec3<T>& po,
       g->cos_theta_i * g->cos_theta_o + g->sin_theta_i * g->sin_theta_o;
   g->theta_h = atan(sin_sum / (T(1.0) + cos_sum));
   g->cos2_theta_d = Max(T(0.5) * (T(1.0) + cos_diff), T(0.0));
-  // cos(phi_d / 2) = |pi / |pi| + po / |po|| / 2: free of the
-  // cancellation of 1 + cos(phi_d) at opposite azimuths (in float,
-  // sqrt((1 + cos phi_d) / 2) lost two digits at 89.9 degrees).
-  const Vec3<T> half = pi / g->cos_theta_i + po / g->cos_theta_o;
+  // cos(phi_d / 2) = |unit pi + unit po| / 2: free of the cancellation of
+  // 1 + cos(phi_d) at opposite azimuths (in float, sqrt((1 + cos phi_d) /
+  // 2) lost two digits at 89.9 degrees).
+  const Vec2<T> half = a.i + a.o;
   g->cos_half_phi_d = Min(T(0.5) * SafeSqrt(glm::dot(half, half)), T(1.0));
 }
 
@@ -230,24 +263,44 @@ template <typename T>
 ThreadGeometry<T> ComputeThreadGeometry(const Vec3<T>& t, const Vec3<T>& n,
                                         const Vec3<T>& wi, const Vec3<T>& wo) {
   ThreadGeometry<T> g;
-  Vec3<T> pi, po;
-  if (!ProjectOnThread(t, n, wi, wo, &g, &pi, &po)) return g;
-  ThreadHalfAngles(pi, po, &g);
-  ThreadAzimuthDifference(pi, po, &g);
+  const Vec3<T> b = glm::cross(t, n);
+  ThreadAzimuths<T> azimuths;
+  if (!ProjectOnThread(t, n, T(glm::dot(wi, b)), T(glm::dot(wo, b)), wi, wo, &g,
+                       &azimuths)) {
+    return g;
+  }
+  ThreadHalfAngles(azimuths, &g);
+  ThreadAzimuthDifference(azimuths, &g);
   return g;
 }
+
+// What the lobes of eq. 3-4 take from a thread's parameters alone,
+// computed once per thread and evaluation (not per tangent sample).
+template <typename T>
+struct ThreadLobeParams {
+  explicit ThreadLobeParams(const ThreadParamsT<T>& p)
+      : eta2_minus_1(p.eta * p.eta - T(1.0)),
+        kd(p.kd),
+        one_minus_kd(T(1.0) - p.kd),
+        surface(Radians(p.gamma_s_deg)),
+        volume(Radians(p.gamma_v_deg)) {}
+  T eta2_minus_1;
+  T kd, one_minus_kd;
+  Gaussian<T> surface, volume;  // g(gamma_s, .), g(gamma_v, .)
+};
 
 // The Fresnel reflectance of eq. 3 for a valid geometry: the dielectric
 // Fresnel at cos = cos(theta_d) cos(phi_d / 2).
 template <typename T, typename G>
-T ThreadFresnel(const ThreadGeometry<G>& g, const T& eta) {
+T ThreadFresnel(const ThreadGeometry<G>& g, const ThreadLobeParams<T>& lp) {
   using std::sqrt;
-  return FresnelDielectric(T(sqrt(g.cos2_theta_d) * g.cos_half_phi_d), eta);
+  return FresnelDielectricGiven(G(sqrt(g.cos2_theta_d) * g.cos_half_phi_d),
+                                lp.eta2_minus_1);
 }
 
 // The two lobes of the thread BSDF for a valid geometry, f_s = surface +
 // volume * albedo per channel (eq. 2-4, already divided by cos^2(theta_d)),
-// given the Fresnel reflectance fr = ThreadFresnel(g, p.eta). Kept apart so
+// given the Fresnel reflectance fr = ThreadFresnel(g, lp). Kept apart so
 // that sums over tangent samples stay scalar until the albedo is applied.
 // The geometry's scalar type G and fr's type F may differ from the
 // parameters' T: a fit with fixed directions (and fixed eta) computes them
@@ -260,30 +313,26 @@ struct ThreadLobes {
 
 template <typename T, typename G, typename F>
 ThreadLobes<T> ThreadLobesGivenFresnel(const ThreadGeometry<G>& g, const F& fr,
-                                       const ThreadParamsT<T>& p) {
-  const T gamma_s = Radians(p.gamma_s_deg);
-  const T gamma_v = Radians(p.gamma_v_deg);
-  const T theta_h(g.theta_h);
+                                       const ThreadLobeParams<T>& lp) {
   const G inv_cos2 = G(1.0) / g.cos2_theta_d;
   ThreadLobes<T> lobes;
-  lobes.surface = T(fr * g.cos_half_phi_d * inv_cos2) *
-                  NormalizedGaussian(gamma_s, theta_h);
+  lobes.surface = T(fr * g.cos_half_phi_d * inv_cos2) * lp.surface(g.theta_h);
   lobes.volume =
       T(Sqr(F(1.0) - fr) * inv_cos2 / (g.cos_theta_i + g.cos_theta_o)) *
-      ((T(1.0) - p.kd) * NormalizedGaussian(gamma_v, theta_h) + p.kd);
+      (lp.one_minus_kd * lp.volume(g.theta_h) + lp.kd);
   return lobes;
 }
 
 template <typename T, typename G>
 ThreadLobes<T> ThreadLobesOf(const ThreadGeometry<G>& g,
-                             const ThreadParamsT<T>& p) {
-  return ThreadLobesGivenFresnel(g, ThreadFresnel(g, p.eta), p);
+                             const ThreadLobeParams<T>& lp) {
+  return ThreadLobesGivenFresnel(g, ThreadFresnel(g, lp), lp);
 }
 
 // Thread BSDF f_s (1/sr) per channel for a valid geometry (eq. 2-4).
 template <typename T, typename G>
 Vec3<T> ThreadBsdf(const ThreadGeometry<G>& g, const ThreadParamsT<T>& p) {
-  const ThreadLobes<T> lobes = ThreadLobesOf(g, p);
+  const ThreadLobes<T> lobes = ThreadLobesOf(g, ThreadLobeParams<T>(p));
   return Vec3<T>(lobes.surface) + p.albedo * lobes.volume;
 }
 

@@ -104,7 +104,9 @@ void CheckSampler(const MaterialT<Real>& m, const glm::dvec3& wo_d,
       counts.back() += 1.0;
       continue;
     }
-    if (domain == Domain::kUpper) ASSERT_GE(b.wi.z, Real(0));
+    if (domain == Domain::kUpper) {
+      ASSERT_GE(b.wi.z, Real(0));
+    }
     const Real pdf = m.Pdf(wo, b.wi, Real(at.s), Real(at.t), Real(at.lod));
     ASSERT_NEAR(b.pdf, pdf, tolerance * pdf);
     const Vec rho = m.Rho(b.wi, wo, Real(at.s), Real(at.t), Real(at.lod));
