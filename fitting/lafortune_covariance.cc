@@ -133,17 +133,17 @@ void ReportLafortuneStddev(const TexelSamples& samples,
                    : "lut.color[" + std::to_string(owned[col - nx]) + "]" +
                          ChannelSuffix(c));
     }
+    // Conditional where some columns are not identifiable: those have
+    // none (-1), the others' hold them at their values.
     for (int q = 0; q < nx; ++q) {
       const auto it = by_name.find(EntryName(q, c));
       if (it == by_name.end()) continue;
       it->second->stddev = cov.stddev[q];
       it->second->stddev_sandwich = cov.sandwich[q];
     }
+    if (cov.conditional) report->stddev_conditional = true;
   }
   if (!not_identifiable.empty()) {
-    for (ParameterReport& r : report->parameters) {
-      r.stddev = r.stddev_sandwich = -1.0;
-    }
     report->identifiability = "not identifiable:";
     const size_t shown = std::min<size_t>(not_identifiable.size(), 6);
     for (size_t k = 0; k < shown; ++k) {
@@ -154,8 +154,9 @@ void ReportLafortuneStddev(const TexelSamples& samples,
           " and " + std::to_string(not_identifiable.size() - shown) + " more";
     }
     report->identifiability +=
-        " (no standard deviations: a lobe that does not shape the fit, or "
-        "views' T trading with the lobes; try fewer lobes or --no-lut)";
+        " (no standard deviation of their own: a lobe that does not shape "
+        "the fit, or views' T trading with the lobes; try fewer lobes or "
+        "--no-lut)";
   }
 }
 

@@ -23,11 +23,14 @@ namespace clothfit {
 // the views with an entry of their own; the others follow them by the
 // table's interpolation, models/lafortune.h LookupView). Channels are
 // independent problems; with the level estimated its variance is each
-// channel's 2 cost / dof. Sets report->identifiability instead when the
-// data do not determine some entries (a collapsed lobe) or when the
-// model is not the least-squares solution (scaled to conserve energy, or
-// a view's T lowered to the energy bound), or when the dense Jacobian
-// would exceed 1e7 entries (samples x parameters of a channel).
+// channel's 2 cost / dof. Where the data do not determine some entries (a
+// collapsed lobe) or views' T, report->identifiability names them; they
+// get none, and the others' are conditional (held at their values,
+// report->stddev_conditional; fitting/covariance_internal.h). None at
+// all, report->identifiability saying why, when the model is not the
+// least-squares solution (scaled to conserve energy, or a view's T
+// lowered to the energy bound) or when the dense Jacobian would exceed
+// 1e7 entries (samples x parameters of a channel).
 void ReportLafortuneStddev(const TexelSamples& samples,
                            const LafortuneModel& model,
                            const std::vector<bool>& own, bool sigma_known,
