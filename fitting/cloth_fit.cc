@@ -326,10 +326,14 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
     ReportChannelsFollowRed("diffuse", &result.report);
   }
   if (conserve) {
-    std::vector<double> model, measured;
-    PredictAll(lsq, x, &model, &measured, nullptr);
-    ConserveEnergyByScale(ModelParams(result.params), model, measured,
-                          &result.params.scale, &result.report);
+    ConserveEnergyByScale(
+        ModelParams(result.params),
+        [&](const std::function<void(double, double)>& visit) {
+          lsq.predict(x, [&](double model, double measured, const TableRow*) {
+            visit(model, measured);
+          });
+        },
+        &result.params.scale, &result.report);
   }
   if (x_out) *x_out = x;
   return result;

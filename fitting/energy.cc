@@ -124,8 +124,7 @@ void ReportModelEnergy(const ModelParams& fitted, FitReport* report) {
 }
 
 double ConserveEnergyByScale(const ModelParams& fitted,
-                             const std::vector<double>& model,
-                             const std::vector<double>& measured, double* scale,
+                             const PredictionPairs& pairs, double* scale,
                              FitReport* report) {
   const EnergyCheck e = ModelEnergy(fitted);
   report->max_albedo = e.max_albedo;
@@ -137,12 +136,14 @@ double ConserveEnergyByScale(const ModelParams& fitted,
   // The model is linear in its factor: the scaled model's values are s
   // times the fit's.
   double se = 0.0, ss = 0.0;
-  for (size_t i = 0; i < model.size(); ++i) {
-    const double d = s * model[i] - measured[i];
+  size_t n = 0;
+  pairs([&](double model, double measured) {
+    const double d = s * model - measured;
     se += d * d;
-    ss += measured[i] * measured[i];
-  }
-  report->rms = std::sqrt(se / std::max<size_t>(1, model.size()));
+    ss += measured * measured;
+    ++n;
+  });
+  report->rms = std::sqrt(se / std::max<size_t>(1, n));
   report->relative_rms = ss > 0.0 ? std::sqrt(se / ss) : 0.0;
   for (ParameterReport& p : report->parameters) {
     if (p.name != "scale") continue;  // the fitted factor, as written

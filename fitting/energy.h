@@ -4,6 +4,7 @@
 // to 89 degrees). A model conserves energy when it is at most 1.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -56,18 +57,22 @@ int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
 // exceeds 1 at grazing views along its axis by itself (docs/fitting.md).
 void ReportModelEnergy(const ModelParams& fitted, FitReport* report);
 
+// The fit's predictions at its optimum and the data they match:
+// `pairs(visit)` calls visit(model, measured) for each, in turn (nothing
+// held for all rows).
+using PredictionPairs =
+    std::function<void(const std::function<void(double, double)>&)>;
+
 // The energy rule of a fit whose model has an overall factor (a cloth
 // model's `scale`): when ModelEnergy(fitted) exceeds 1, *scale is
 // multiplied by s = 1 / that albedo, so that what is written conserves
-// energy; `model` and `measured` are the fit's predictions at its optimum
-// and the data they match (PredictAll), from which the
-// report's rms and relative_rms become the scaled model's. Records the
-// check (max_albedo, max_albedo_at, energy_scale) and, when it scaled,
-// marks the fit not converged (MarkEnergyScaled). Returns s (1: nothing
+// energy, and the report's rms and relative_rms become the scaled
+// model's (from `pairs`, visited only then). Records the check
+// (max_albedo, max_albedo_at, energy_scale) and, when it scaled, marks
+// the fit not converged (MarkEnergyScaled). Returns s (1: nothing
 // scaled).
 double ConserveEnergyByScale(const ModelParams& fitted,
-                             const std::vector<double>& model,
-                             const std::vector<double>& measured, double* scale,
+                             const PredictionPairs& pairs, double* scale,
                              FitReport* report);
 
 // A fit scaled to conserve energy (report->energy_scale < 1) is not

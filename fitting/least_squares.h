@@ -107,7 +107,7 @@ struct LeastSquaresProblem {
   // Model values and the data, in data units, for rms errors and for
   // naming the row of a non-finite value: called with a solution or a
   // start; calls `visit` with each pair (model, measured) and its table row,
-  // rows and channels in order (nothing held for all rows: PredictAll).
+  // rows and channels in order (nothing is held for all rows).
   std::function<void(const std::vector<double>& x,
                      const PredictionVisitor& visit)>
       predict;
@@ -185,12 +185,6 @@ void ApplyFreeFix(const std::vector<std::string>& fix,
 // nothing.
 void FreeAlso(const std::vector<std::string>& names,
               std::vector<ParameterSpec>* specs);
-
-// lsq.predict's pairs at x, flattened, and (when `rows` is not null) the
-// table row of each pair.
-void PredictAll(const LeastSquaresProblem& lsq, const std::vector<double>& x,
-                std::vector<double>* model, std::vector<double>* measured,
-                std::vector<const TableRow*>* rows);
 
 // The first pair of `lsq.predict` at x whose model value, or its
 // difference from the data, is not finite, named by its table line,
