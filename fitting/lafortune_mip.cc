@@ -157,6 +157,18 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   fit.report.minimised += std::string(" of the table's values (") +
                           QuantityName(table.quantity) +
                           "), over merged samples";
+  // A lookup table of T = 1 and alpha = 1 at every view (a fit without
+  // one, or one the data left at 1) is no table: the model is the same
+  // without it (T(v) = 1, models/lafortune.h), and written it would hold
+  // every distinct view of the table (10^7 for 10^7 rows of random
+  // directions: gigabytes of JSON).
+  const ViewTable& lut = fit.params.lut;
+  const bool identity =
+      std::all_of(lut.color.begin(), lut.color.end(),
+                  [](const glm::dvec3& t) { return t == glm::dvec3(1.0); }) &&
+      std::all_of(lut.alpha.begin(), lut.alpha.end(),
+                  [](double a) { return a == 1.0; });
+  if (identity) fit.params.lut = ViewTable();
   return fit;
 }
 

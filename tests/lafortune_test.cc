@@ -467,6 +467,32 @@ TEST(LafortuneFit, TableFitReportsStandardDeviationsOrSaysWhyNot) {
   }
 }
 
+// A table fit without a lookup table writes none: T = 1 at every view is
+// the model without a table, and listing the views would make the file
+// as long as the table (one view per row for random directions). With
+// the table, its entries stay.
+TEST(LafortuneFit, TableFitWithoutLookupTableWritesNone) {
+  const std::vector<glm::dvec3> views = Hemisphere(4);
+  const std::vector<glm::dvec3> lights = Hemisphere(5, 0.37);
+  LafortuneModel truth = TruthModel(views);
+  truth.params.lobes.resize(1);
+  const MeasurementTable table = LafortuneTable(truth, lights, views);
+  LafortuneMipOptions without;
+  without.fit.lobes = 1;
+  without.fit.lookup_table = false;
+  const LafortuneFitResult a = FitLafortuneTable(table, without);
+  ASSERT_TRUE(a.report.usable) << a.report.message;
+  EXPECT_TRUE(a.params.lut.views.empty());
+  EXPECT_TRUE(a.params.lut.color.empty());
+  EXPECT_TRUE(a.params.lut.alpha.empty());
+  LafortuneMipOptions with = without;
+  with.fit.lookup_table = true;
+  const LafortuneFitResult b = FitLafortuneTable(table, with);
+  ASSERT_TRUE(b.report.usable) << b.report.message;
+  EXPECT_EQ(b.params.lut.views.size(), views.size());
+  EXPECT_EQ(b.params.lut.color.size(), views.size());
+}
+
 TEST(LafortuneFit, EmptyAndDegenerateTexelsGiveFiniteResults) {
   LafortuneFitOptions options;
   // No samples at all.
