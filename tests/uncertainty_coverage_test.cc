@@ -269,7 +269,8 @@ std::map<std::string, double> LafortuneTruthAtGauge(const LafortuneModel& truth,
   for (int c = 0; c < 3; ++c) {
     double mean_fit = 0.0, mean_true = 0.0;
     for (size_t k = 0; k < truth.lut.color.size(); ++k) {
-      mean_fit += fit.lut.color[k][c];
+      // T of the fit at the view (1 where it has no table).
+      mean_fit += LookupView(fit.lut, truth.lut.views[k]).color[c];
       mean_true += truth.lut.color[k][c];
     }
     const double s = mean_fit / mean_true;
