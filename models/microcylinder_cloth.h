@@ -292,8 +292,8 @@ TangentSample<G> ComputeTangentSample(const TangentFrame<G>& f,
     return out;
   }
   out.valid = true;
-  // cos psi of eq. 10: q.n / |q| with q.n = w.n = cos(phi) cos(theta) (b
-  // is normal to n).
+  // cos psi of eq. 10: q.n / |q|, and q.n = w.n (q is w less its part
+  // along b, which is normal to n).
   out.reweight = MaskingTermWith(G(glm::dot(wi, f.n) * plane.inv_qi_len),
                                  G(glm::dot(wo, f.n) * plane.inv_qo_len),
                                  [&] { return plane.u; });
