@@ -140,11 +140,6 @@ struct Gaussian {
   }
 };
 
-template <typename T>
-T NormalizedGaussian(const T& s, const T& x) {
-  return Gaussian<T>(s)(x);
-}
-
 // Unpolarised Fresnel reflectance of a dielectric of relative index eta > 1
 // for cos_theta in [0, 1] (Cook and Torrance 1982, the exact form), given
 // eta^2 - 1.
@@ -156,11 +151,6 @@ T FresnelDielectricGiven(const C& cos_theta, const T& eta2_minus_1) {
   const T a = T(0.5) * Sqr(g - c) / Sqr(g + c);
   const T b = T(1.0) + Sqr(c * (g + c) - T(1.0)) / Sqr(c * (g - c) + T(1.0));
   return a * b;
-}
-
-template <typename T>
-T FresnelDielectric(const T& cos_theta, const T& eta) {
-  return FresnelDielectricGiven(cos_theta, T(eta * eta - T(1.0)));
 }
 
 // Angles of a (wi, wo) pair relative to one thread (tangent t, local normal

@@ -55,10 +55,12 @@ template <typename R>
 struct PreparedCloth {
   ClothParamsT<R> cloth;
   std::vector<std::vector<TangentFrame<R>>> frames;  // [thread][distinct]
-  std::vector<int> totals;                           // [thread] samples
 
   int Count(size_t j) const { return static_cast<int>(frames[j].size()); }
-  int Total(size_t j) const { return totals[j]; }
+  // The thread's samples, repeats included.
+  int Total(size_t j) const {
+    return static_cast<int>(cloth.threads[j].offsets_deg.size());
+  }
   const TangentFrame<R>& Get(size_t j, int k) const { return frames[j][k]; }
 };
 
@@ -93,7 +95,6 @@ PreparedCloth<R> PrepareCloth(const ClothParams& c) {
       offsets.push_back(offset);
     }
     out.frames.push_back(std::move(frames));
-    out.totals.push_back(static_cast<int>(th.offsets_deg.size()));
   }
   return out;
 }
