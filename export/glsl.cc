@@ -8,6 +8,7 @@
 
 #include "export/glsl_sources_internal.h"
 #include "io/input_error.h"
+#include "models/prepared.h"
 
 namespace clothfit {
 namespace {
@@ -90,29 +91,34 @@ std::string GlslSource(const ModelParams& model) {
            "vec3 clothfit_rho(vec3 wi, vec3 wo) {\n"
            "  return clothfit_f(wi, wo) * abs(wi.z);\n}\n";
   } else if (const auto* c = std::get_if<ClothParams>(&model)) {
-    std::vector<std::string> threads, coverage, first, t, n;
-    int samples = 0;
-    for (const ClothThread& th : c->threads) {
-      threads.push_back(ThreadLiteral(th.params));
-      coverage.push_back(F(th.coverage));
-      first.push_back(std::to_string(samples));
-      for (double offset : th.offsets_deg) {
-        const TangentFrame<double> f =
-            MakeTangentFrame(th.direction, c->rotation_deg, offset);
+    // A thread's samples at the same offset are one frame with its
+    // repeats, as in a prepared material (models/prepared.h).
+    const PreparedCloth<double> prepared = PrepareCloth<double>(*c);
+    std::vector<std::string> threads, coverage, total, first, t, n, repeats;
+    int frames = 0;
+    for (size_t j = 0; j < c->threads.size(); ++j) {
+      threads.push_back(ThreadLiteral(c->threads[j].params));
+      coverage.push_back(F(c->threads[j].coverage));
+      total.push_back(F(prepared.Total(j)));
+      first.push_back(std::to_string(frames));
+      for (const TangentFrame<double>& f : prepared.frames[j]) {
         t.push_back(V(f.t));
         n.push_back(V(f.n));
-        ++samples;
+        repeats.push_back(F(f.repeats));
+        ++frames;
       }
     }
-    first.push_back(std::to_string(samples));
+    first.push_back(std::to_string(frames));
     out << glsl_sources::kThread << "\n"
         << "const int CF_THREADS = " << c->threads.size() << ";\n"
         << Array("CfThread", "CF_THREAD", threads,
                  ThreadLiteral(ThreadParams()))
         << Array("float", "CF_COVERAGE", coverage, "0.0")
+        << Array("float", "CF_TOTAL", total, "0.0")
         << Array("int", "CF_FIRST", first, "0")
         << Array("vec3", "CF_T", t, "vec3(1.0, 0.0, 0.0)")
         << Array("vec3", "CF_N", n, "vec3(0.0, 0.0, 1.0)")
+        << Array("float", "CF_REPEATS", repeats, "1.0")
         << "const vec3 CF_DIFFUSE = " << V(c->diffuse) << ";\n"
         << "const float CF_SCALE = " << F(c->scale) << ";\n\n"
         << glsl_sources::kCloth << "\n"

@@ -1,8 +1,10 @@
 // The cloth patch (Sadeghi et al. 2013, eq. 5-13; models/microcylinder_cloth.h)
 // with the export's constants: CF_THREADS threads, CF_THREAD[j] their
-// scattering parameters, CF_COVERAGE[j], the tangent frames CF_T[k], CF_N[k]
-// of thread j's samples k in [CF_FIRST[j], CF_FIRST[j + 1]), CF_DIFFUSE and
-// CF_SCALE.
+// scattering parameters, CF_COVERAGE[j], CF_TOTAL[j] their numbers of
+// tangent samples, the distinct sample frames CF_T[k], CF_N[k] of thread j,
+// k in [CF_FIRST[j], CF_FIRST[j + 1]), each standing for CF_REPEATS[k]
+// samples at the same offset (their terms added once and multiplied),
+// CF_DIFFUSE and CF_SCALE.
 float cf_masking_blend(float angle_d) {
   const float w = 20.0 * CF_PI / 180.0;
   return cf_exp_neg(angle_d * angle_d / (2.0 * w * w));
@@ -34,7 +36,8 @@ vec3 cf_cloth_rho(vec3 wi, vec3 wo) {
           vec3 pi, po;
           if (!cf_project(CF_T[k], CF_N[k], wi, wo, g, pi, po)) continue;
           float reweight = cf_masking(dot(qi, CF_N[k]) / qi_len,
-                                      dot(qo, CF_N[k]) / qo_len, u);
+                                      dot(qo, CF_N[k]) / qo_len, u) *
+                           CF_REPEATS[k];
           w += reweight;
           if (!(reweight > 0.0)) continue;
           cf_azimuth_difference(pi, po, g);
@@ -53,8 +56,7 @@ vec3 cf_cloth_rho(vec3 wi, vec3 wo) {
         }
       }
     }
-    int count = last - first;
-    float inv_count = count > 0 ? 1.0 / float(count) : 0.0;
+    float inv_count = CF_TOTAL[j] > 0.0 ? 1.0 / CF_TOTAL[j] : 0.0;
     sum += (vec3(surface) + CF_THREAD[j].albedo * volume) * inv_count *
            CF_COVERAGE[j];
     coverage += CF_COVERAGE[j];
