@@ -117,8 +117,8 @@ G EnergyBoundFactor(const EnergyBound* b, const G& ci, const G& co) {
   using energy_bound_internal::Interpolate;
   const G fade_cos(kEnergyBoundFadeCos);
   const G fade = Min(G(1.0), ci / fade_cos) * Min(G(1.0), co / fade_cos);
-  const G d = Max(Max(ci, Interpolate(b->light, ci)),
-                  ci * Interpolate(b->view, co));
+  const G d =
+      Max(Max(ci, Interpolate(b->light, ci)), ci * Interpolate(b->view, co));
   return fade * ci / d;
 }
 
