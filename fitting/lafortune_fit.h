@@ -80,6 +80,13 @@ struct LafortuneFitOptions {
   // faster with 1 % lower mean error (the later passes refine); n = 16
   // loses 2 %. 1 = off.
   int first_pass_subsample = 4;
+  // Above this many samples a lobe solve hands the solver compressed
+  // chunks of samples whose terms it computes as it evaluates them
+  // (fitting/lafortune_lobes.cc), not one block over a copy of every
+  // sample's terms: the copy and the solver's dense Jacobian of every
+  // sample were 1.9 GB of a 10^7-row fit. The same steps either way (the
+  // chunks' QR factors have the rows' normal equations).
+  size_t max_one_block_samples = size_t{1} << 16;
   // Starts: the paper's (grey, moderate highlight, slightly anisotropic
   // lobes); with data_driven_start also one scaled to the data (diffuse
   // from a closed-form least squares, lobes sized to the brightest excess),
