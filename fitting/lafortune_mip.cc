@@ -133,8 +133,12 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
   const Weighting weighting = LafortuneWeighting(table, options.noise);
   int skipped = 0;
+  // Without a lookup table (and without the views' coverage, alpha) the
+  // samples need no views: one a row for random directions, each with
+  // its T and alpha held through the fit.
+  const bool one_view = !options.fit.lookup_table && !table.has_alpha;
   const TexelSamples samples =
-      CollectSamples(table, weighting, views, rows, &skipped);
+      CollectSamples(table, weighting, views, rows, &skipped, one_view);
   LafortuneFitResult fit =
       FitTexelSamples(samples, skipped, table, views, rows, options);
   fit.report.parameters = LafortuneParameterReports(fit.params.params);

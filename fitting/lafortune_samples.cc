@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <vector>
 
 #include "fitting/residual_weight.h"
 #include "io/input_error.h"
@@ -15,58 +15,105 @@ namespace {
 
 long long Round(double x) { return std::llround(x * 1e9); }
 
-struct KeyHash {
-  size_t operator()(const std::array<long long, 6>& k) const {
-    size_t h = 1469598103934665603ULL;
-    for (long long v : k) h = (h ^ static_cast<size_t>(v)) * 1099511628211ULL;
-    return h;
+using Key = std::array<long long, 6>;
+
+size_t HashKey(const Key& k) {
+  size_t h = 1469598103934665603ULL;
+  for (long long v : k) h = (h ^ static_cast<size_t>(v)) * 1099511628211ULL;
+  return h;
+}
+
+// The id of each of n items in order of first appearance of its key
+// (key_of(i)), and the number of distinct keys. An open-addressing table
+// of item numbers (4 bytes a slot, at most half full) whose keys are
+// recomputed on each probe: a node-based hash map of the keys took 72
+// bytes an entry, 2.4 GB for the three indices of 10^7 rows.
+template <typename KeyOf>
+int FirstAppearanceIds(size_t n, const KeyOf& key_of, std::vector<int>* ids) {
+  size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  std::vector<int32_t> slots(capacity, -1);
+  ids->resize(n);
+  int distinct = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Key key = key_of(i);
+    size_t slot = HashKey(key) & (capacity - 1);
+    while (slots[slot] >= 0 &&
+           key_of(static_cast<size_t>(slots[slot])) != key) {
+      slot = (slot + 1) & (capacity - 1);
+    }
+    if (slots[slot] < 0) {
+      slots[slot] = static_cast<int32_t>(i);
+      (*ids)[i] = distinct++;
+    } else {
+      (*ids)[i] = (*ids)[static_cast<size_t>(slots[slot])];
+    }
   }
-};
+  return distinct;
+}
+
+Key ViewKey(const TableRow& row) {
+  return {Round(row.wo.x), Round(row.wo.y), Round(row.wo.z), 0, 0, 0};
+}
+Key LightKey(const TableRow& row) {
+  return {Round(row.wi.x), Round(row.wi.y), Round(row.wi.z), 0, 0, 0};
+}
+Key PairKey(const TableRow& row) {
+  return {Round(row.wo.x), Round(row.wo.y), Round(row.wo.z),
+          Round(row.wi.x), Round(row.wi.y), Round(row.wi.z)};
+}
 
 }  // namespace
 
 ViewIndex::ViewIndex(const MeasurementTable& table) {
-  std::unordered_map<std::array<long long, 6>, int, KeyHash> views, pairs,
-      lights;
-  row_view_.resize(table.rows.size());
-  row_pair_.resize(table.rows.size());
-  row_light_.resize(table.rows.size());
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const TableRow& row = table.rows[i];
-    const std::array<long long, 6> view = {
-        Round(row.wo.x), Round(row.wo.y), Round(row.wo.z), 0, 0, 0};
-    std::array<long long, 6> pair = view;
-    pair[3] = Round(row.wi.x);
-    pair[4] = Round(row.wi.y);
-    pair[5] = Round(row.wi.z);
-    auto v = views.emplace(view, static_cast<int>(views_.size()));
-    if (v.second) views_.push_back(row.wo);
-    row_view_[i] = v.first->second;
-    row_pair_[i] = pairs.emplace(pair, pairs_).first->second;
-    if (row_pair_[i] == pairs_) ++pairs_;
-    const std::array<long long, 6> light = {pair[3], pair[4], pair[5], 0, 0, 0};
-    row_light_[i] = lights.emplace(light, lights_).first->second;
-    if (row_light_[i] == lights_) ++lights_;
+  const std::vector<TableRow>& rows = table.rows;
+  if (rows.size() > static_cast<size_t>(INT32_MAX)) {
+    throw InputError(table.source + ": more than 2^31 rows");
   }
+  const int views = FirstAppearanceIds(
+      rows.size(), [&](size_t i) { return ViewKey(rows[i]); }, &row_view_);
+  views_.resize(static_cast<size_t>(views));
+  for (size_t i = rows.size(); i-- > 0;) views_[row_view_[i]] = rows[i].wo;
+  pairs_ = FirstAppearanceIds(
+      rows.size(), [&](size_t i) { return PairKey(rows[i]); }, &row_pair_);
+  lights_ = FirstAppearanceIds(
+      rows.size(), [&](size_t i) { return LightKey(rows[i]); }, &row_light_);
 }
 
 SampleCollector::SampleCollector(const MeasurementTable& table,
-                                 const ViewIndex& views)
+                                 const ViewIndex& views, bool one_view)
     : quantity_(table.quantity),
       has_normal_(table.has_normal),
-      alpha_sum_(views.views().size(), 0.0),
-      alpha_count_(views.views().size(), 0),
+      one_view_(one_view),
+      alpha_sum_(one_view ? 1 : views.views().size(), 0.0),
+      alpha_count_(one_view ? 1 : views.views().size(), 0),
       slot_(views.pairs(), -1) {
   if (table.quantity == Quantity::kTransmittance) {
     throw InputError(
         "a Lafortune model predicts reflection (brdf or "
         "cosine_weighted), not transmittance");
   }
-  s_.views = views.views();
+  if (one_view) {
+    s_.views = {glm::dvec3(0.0, 0.0, 1.0)};
+  } else {
+    s_.views = views.views();
+  }
+}
+
+void SampleCollector::Reserve(size_t samples) {
+  s_.l.reserve(samples);
+  s_.v.reserve(samples);
+  s_.view.reserve(samples);
+  s_.weight.reserve(samples);
+  s_.value.reserve(samples);
+  s_.source_line.reserve(samples);
+  s_.count_rows.reserve(samples);
+  sum_wy_.reserve(samples);
 }
 
 void SampleCollector::Add(const TableRow& row, int view, int pair,
                           const Weighting& weighting) {
+  if (one_view_) view = 0;
   // A pooled group's normal: the average of its rows' (Section 5.1).
   normal_sum_ += row.normal;
   if (!IsReflectionRow(row)) {
@@ -124,8 +171,10 @@ TexelSamples SampleCollector::Finish(int* skipped) {
 
 TexelSamples CollectSamples(const MeasurementTable& table,
                             const Weighting& weighting, const ViewIndex& views,
-                            const std::vector<size_t>& rows, int* skipped) {
-  SampleCollector collector(table, views);
+                            const std::vector<size_t>& rows, int* skipped,
+                            bool one_view) {
+  SampleCollector collector(table, views, one_view);
+  collector.Reserve(std::min(rows.size(), static_cast<size_t>(views.pairs())));
   for (size_t index : rows) {
     collector.Add(table.rows[index], views.RowView(index), views.RowPair(index),
                   weighting);

@@ -65,10 +65,12 @@ class ViewIndex {
 // (a pooled group: the average of its texels' normals, as the paper's
 // Section 5.1), and l, v are rotated into its frame; else the surface
 // frame.
-// Throws InputError for a transmittance table.
+// one_view: as SampleCollector's. Throws InputError for a transmittance
+// table.
 TexelSamples CollectSamples(const MeasurementTable& table,
                             const Weighting& weighting, const ViewIndex& views,
-                            const std::vector<size_t>& rows, int* skipped);
+                            const std::vector<size_t>& rows, int* skipped,
+                            bool one_view = false);
 
 // CollectSamples one row at a time, for rows that are not held in one
 // table (a texture streamed from its images, fitting/lafortune_merge.h):
@@ -78,7 +80,13 @@ TexelSamples CollectSamples(const MeasurementTable& table,
 class SampleCollector {
  public:
   // `table`: the quantity and has_normal of the rows (no rows needed).
-  SampleCollector(const MeasurementTable& table, const ViewIndex& views);
+  // one_view: the samples' views are one, (0, 0, 1), that every row's
+  // view is taken as (for a fit without a lookup table, which needs no
+  // per-view arrays: a table of random directions has one view a row).
+  SampleCollector(const MeasurementTable& table, const ViewIndex& views,
+                  bool one_view = false);
+  // Room for this many samples (at most the rows to be added).
+  void Reserve(size_t samples);
   void Add(const TableRow& row, int view, int pair, const Weighting& weighting);
   // The samples; *skipped (may be null) the rows that are not reflection.
   TexelSamples Finish(int* skipped);
@@ -86,6 +94,7 @@ class SampleCollector {
  private:
   Quantity quantity_;
   bool has_normal_;
+  bool one_view_;
   TexelSamples s_;
   std::vector<double> alpha_sum_;
   std::vector<int> alpha_count_;
