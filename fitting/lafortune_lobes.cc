@@ -81,7 +81,7 @@ std::vector<ChannelTerms> MakeChannelTerms(const TexelSamples& s,
 // more than max_one_block_samples samples (LafortuneFitOptions), added as
 // compressed chunks (fitting/compressed_rows.cc), so that neither the terms of
 // every sample nor the solver's Jacobian of every sample is held. The samples
-// and the table outlive the solve.
+// and the lookup table `lut` outlive the solve.
 template <int kLobes>
 struct ChannelChunkResidual {
   const TexelSamples* samples;

@@ -134,8 +134,9 @@ LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
   const Weighting weighting = LafortuneWeighting(table, options.noise);
   int skipped = 0;
   // Without a lookup table (and without the views' coverage, alpha) the
-  // samples need no views: one a row for random directions, each with
-  // its T and alpha held through the fit.
+  // fit needs no views: collected under one, it holds no per-view arrays
+  // (T, alpha and their copies; a table of random directions has a view
+  // a row).
   const bool one_view = !options.fit.lookup_table && !table.has_alpha;
   const TexelSamples samples =
       CollectSamples(table, weighting, views, rows, &skipped, one_view);

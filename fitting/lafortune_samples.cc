@@ -17,10 +17,18 @@ long long Round(double x) { return std::llround(x * 1e9); }
 
 using Key = std::array<long long, 6>;
 
+// FNV-1a over the key's words, then the finaliser of MurmurHash3's
+// 64-bit mix, so that the low bits the table's mask keeps depend on every
+// bit of every word (linear probing degrades with clustered slots).
 size_t HashKey(const Key& k) {
-  size_t h = 1469598103934665603ULL;
-  for (long long v : k) h = (h ^ static_cast<size_t>(v)) * 1099511628211ULL;
-  return h;
+  uint64_t h = 1469598103934665603ULL;
+  for (long long v : k) h = (h ^ static_cast<uint64_t>(v)) * 1099511628211ULL;
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdULL;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53ULL;
+  h ^= h >> 33;
+  return static_cast<size_t>(h);
 }
 
 // The id of each of n items in order of first appearance of its key
