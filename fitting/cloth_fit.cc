@@ -152,17 +152,18 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
   return out;
 }
 
-// One fit of the model through the rows' bound factors (null: the paper's
-// model): from the start search, from the solver vector `*refit_x` alone,
-// or (`search_too`) from `*refit_x` and the search's starts. The solver
-// vector of the result goes to `*x_out` (when not null).
-ClothFitResult FitClothThrough(const MeasurementTable& table,
-                               const ClothParams& init,
-                               const ClothFitOptions& options,
-                               const std::vector<double>* bound_factor,
-                               const std::vector<double>* refit_x,
-                               std::vector<double>* x_out,
-                               bool search_too = false) {
+// One fit of the model through the rows' fixed bound factors (null: the
+// paper's model), or (`plan`) of the bounded model with its tables through
+// that plan: from the start search, from the solver vector `*refit_x`
+// alone, or from both when `search_factor` is given (the rows' factors the
+// search sees). The solver vector of the result goes to `*x_out` (when not
+// null).
+ClothFitResult FitClothThrough(
+    const MeasurementTable& table, const ClothParams& init,
+    const ClothFitOptions& options, const std::vector<double>* bound_factor,
+    const std::vector<double>* refit_x, std::vector<double>* x_out,
+    const EnergyBoundPlan* plan = nullptr,
+    const std::vector<double>* search_factor = nullptr) {
   const size_t n = init.threads.size();
   auto weave = std::make_shared<Weave>(init);
   const ClothVector& v = weave->vector;
@@ -254,12 +255,12 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
     blocks.used.push_back(v.ScaleBlock());
   }
   SetModelResiduals(std::shared_ptr<const ClothEvaluator>(evaluator),
-                    TableFitRows(table, weighting), blocks, &lsq);
+                    TableFitRows(table, weighting), blocks, &lsq, plan);
   // The fit writes a cloth that conserves energy (scaled down if need
   // be): among the starts' solutions, one that conserves energy as it
   // stands wins over a lower cost that would be scaled down.
-  const bool conserve =
-      options.conserve_energy && !options.energy_bound && !bound_factor;
+  const bool conserve = options.conserve_energy && !options.energy_bound &&
+                        !bound_factor && !plan;
   if (conserve) {
     lsq.plausible = [weave,
                      channels = table.channels](const std::vector<double>& x) {
@@ -282,11 +283,12 @@ ClothFitResult FitClothThrough(const MeasurementTable& table,
   search.weave = weave.get();
   search.specs = &lsq.specs;
   search.init = CoverageToStick(*weave, ClothToVector(init));
-  search.row_factor = SearchRowValues(table.rows.size(), bound_factor);
+  search.row_factor = SearchRowValues(
+      table.rows.size(), search_factor ? search_factor : bound_factor);
   search.search_widths = options.multi_start;
   search.design_points = options.multi_start ? options.design_points : 0;
   ClothStarts starts;
-  const bool searched = !refit_x || search_too;
+  const bool searched = !refit_x || search_factor;
   if (searched) {
     starts = SearchClothStarts(search, std::max(1, options.solve_starts));
   }
@@ -376,19 +378,29 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
   }
   ClothFitResult result;
   if (options.energy_bound) {
+    std::vector<double> x, x_within;
+    result = FitClothThrough(table, init, options, nullptr, nullptr, &x);
     MeasurementTable first_storage;
-    std::vector<double> x;
-    result = FitClothThrough(FirstFitRows(table, &first_storage), init, options,
-                             nullptr, nullptr, &x);
-    result.report.rows = static_cast<int>(table.rows.size());
+    const MeasurementTable& first = FirstFitRows(table, &first_storage);
+    bool of_every_row = true;
+    if (&first != &table) {
+      ClothFitResult within =
+          FitClothThrough(first, init, options, nullptr, nullptr, &x_within);
+      within.report.rows = static_cast<int>(table.rows.size());
+      if (BetterBoundedStart(table, options.solver.noise, within, result)) {
+        result = std::move(within);
+        of_every_row = false;
+        x = x_within;
+      }
+    }
     SettleEnergyBound<ClothParams>(
         table,
-        [&](const std::vector<double>& factors, const ClothParams&,
-            bool search) {
-          return FitClothThrough(table, init, options, &factors, &x, &x,
-                                 search);
+        [&](const EnergyBoundPlan& plan, const ClothParams&,
+            const std::vector<double>* search_factor) {
+          return FitClothThrough(table, init, options, nullptr, &x, &x, &plan,
+                                 search_factor);
         },
-        &result);
+        of_every_row, &result);
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const std::vector<double> factors =

@@ -193,6 +193,16 @@ struct ClothEvaluator {
                  table->quantity) *
            factor;
   }
+
+  // The paper's cloth at the blocks, rho(wi, wo) cosine-weighted without
+  // the scale: what the energy bound is a quadrature of.
+  template <typename T>
+  auto BoundRho(const T* const* blocks) const {
+    return [c = ClothFromBlocks(*weave, blocks, true)](const glm::dvec3& wi,
+                                                       const glm::dvec3& wo) {
+      return Rho(c, wi, wo);
+    };
+  }
 };
 
 }  // namespace clothfit

@@ -1,10 +1,11 @@
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "fitting/energy_bound_fit_internal.h"
+#include "fitting/residual_weight.h"
+#include "models/evaluate.h"
 
 namespace clothfit {
 namespace {
@@ -36,6 +37,23 @@ const MeasurementTable& FirstFitRows(const MeasurementTable& table,
   return table;
 }
 
+double BoundedCost(const MeasurementTable& table, const NoiseModel& noise,
+                   const ModelParams& bounded) {
+  const Weighting weighting(table, noise);
+  double cost = 0.0;
+  for (const TableRow& row : table.rows) {
+    const glm::dvec3 m = Evaluate(bounded, row.wi, row.wo, table.quantity);
+    const glm::dvec3 scale = weighting.DependsOnModel()
+                                 ? weighting.ScaleAt(row, m)
+                                 : weighting.Scale(row);
+    for (int c = 0; c < table.channels; ++c) {
+      const double r = WeightedResidual(m[c], row.value[c], scale[c]);
+      cost += 0.5 * r * r;
+    }
+  }
+  return std::isfinite(cost) ? cost : HUGE_VAL;
+}
+
 std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
                                        const EnergyBound* bound) {
   std::vector<double> f(table.rows.size(), 1.0);
@@ -46,6 +64,37 @@ std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
   return f;
 }
 
+void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
+                       EnergyBoundPlan* plan) {
+  const int n = static_cast<int>(plan->light.size());
+  std::vector<bool> used(2 * n, false);  // light then view
+  // The nodes about cosine c (energy_bound_internal::Interpolate), a copy
+  // standing for the first node it copies.
+  auto mark = [&](int side, double c) {
+    const double x = std::sqrt(std::clamp(c, 0.0, 1.0)) * (n - 1);
+    const int k = std::min(n - 2, static_cast<int>(x));
+    for (int j : {k, k + 1}) {
+      const auto& entries = side == 0 ? plan->light : plan->view;
+      while (j + 1 < n && entries[j].copy) ++j;
+      used[side * n + j] = true;
+    }
+  };
+  for (const TableRow& row : table.rows) {
+    const double ci = row.wi.z, co = row.wo.z;
+    if (!(ci > 0.0) || !(co > 0.0)) continue;
+    const double l =
+        energy_bound_internal::Interpolate<double>(tables.light.data(), n, ci);
+    const double v =
+        energy_bound_internal::Interpolate<double>(tables.view.data(), n, co);
+    if (l > 0.5 * ci) mark(0, ci);
+    if (v > 0.5) mark(1, co);
+  }
+  for (int side = 0; side < 2; ++side) {
+    auto& entries = side == 0 ? plan->light : plan->view;
+    for (int k = 0; k < n; ++k) entries[k].held = !used[side * n + k];
+  }
+}
+
 double RelativeFactorChange(const std::vector<double>& g,
                             const std::vector<double>& x) {
   double change = 0.0;
@@ -53,38 +102,6 @@ double RelativeFactorChange(const std::vector<double>& g,
     change = std::max(change, std::abs(g[i] - x[i]) / std::max(x[i], 1e-300));
   }
   return change;
-}
-
-std::vector<double> AndersonFactors(
-    const std::vector<std::vector<double>>& xs,
-    const std::vector<std::vector<double>>& gs) {
-  constexpr int kDepth = 3;
-  const int k = static_cast<int>(gs.size()) - 1;  // the newest pair
-  const int m = std::min(kDepth, k);
-  const Eigen::Index n = static_cast<Eigen::Index>(gs[k].size());
-  Eigen::VectorXd next = Eigen::Map<const Eigen::VectorXd>(gs[k].data(), n);
-  if (m > 0) {
-    // Minimise |r_k - dR gamma| over gamma, dR's columns the differences
-    // of the residuals r_j = g_j - x_j, then x = g_k - dG gamma.
-    auto r = [&](int j) {
-      return Eigen::Map<const Eigen::VectorXd>(gs[j].data(), n) -
-             Eigen::Map<const Eigen::VectorXd>(xs[j].data(), n);
-    };
-    Eigen::MatrixXd dr(n, m), dg(n, m);
-    for (int c = 0; c < m; ++c) {
-      const int j = k - m + c;
-      dr.col(c) = r(j + 1) - r(j);
-      dg.col(c) = Eigen::Map<const Eigen::VectorXd>(gs[j + 1].data(), n) -
-                  Eigen::Map<const Eigen::VectorXd>(gs[j].data(), n);
-    }
-    const Eigen::VectorXd gamma = dr.colPivHouseholderQr().solve(r(k));
-    if (gamma.allFinite()) next -= dg * gamma;
-  }
-  std::vector<double> out(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    out[i] = std::isfinite(next[i]) ? std::clamp(next[i], 1e-12, 1.0) : 1.0;
-  }
-  return out;
 }
 
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
@@ -97,16 +114,16 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
   }
   char text[160];
   std::snprintf(text, sizeof(text),
-                "lowers %d of %zu rows, by up to %.3g %%; %d refit(s)", lowered,
-                factors.size(), 100.0 * most, refits);
+                "lowers %d of %zu rows, by up to %.3g %%; %d solve(s) of the "
+                "bounded model",
+                lowered, factors.size(), 100.0 * most, refits);
   report->energy_bound = text;
   if (settled) return;
   report->converged = false;
   std::string msg =
       "the energy bound did not settle in " + std::to_string(refits) +
-      " refits" +
-      " (data brighter than a physical surface? check the table's "
-      "calibration); the errors are the last refit's";
+      " solves (its largest albedos moved to other directions each time); "
+      "the errors are the last solve's";
   if (!report->message.empty()) msg += "; " + report->message;
   report->message = msg;
 }

@@ -3,26 +3,27 @@
 // conserves energy everywhere on the hemisphere, and the fit must match
 // that bounded model to the data, not the paper's model.
 //
-// The bound's tables are a quadrature of the model at the parameters, so
-// they are held fixed during a solve: the rows' bound factors
-// EnergyBoundFactor(bound, wi.z, wo.z) multiply the model as constants,
-// and the fit is repeated until the factors of its result's bound are the
-// factors it was fitted through (a fixed point, within kEnergyBoundSettled
-// relative). Plain repetition settles slowly, since the bound divides the
-// model's own brightness out (fitting a brighter model gives a stronger
-// bound); the factors are therefore mixed by Anderson acceleration
-// (Walker and Ni 2011, "Anderson acceleration for fixed-point
-// iterations", depth 3).
-//
-// The first fit, of the paper's model, uses only the rows with light and
-// view within 60 degrees of the normal (FirstFitRows), where a model of
-// plausible brightness is not bounded: fitted to every row, the unbounded
-// model bends its parameters to follow the bounded grazing rows, and the
-// repetition may settle in that bent basin. Includes Ceres' Eigen: for
-// fitting/*.cc only.
+// The bound's tables are quadratures of the model at the parameters: the
+// largest directional albedo over azimuth and channel at each node. With
+// the azimuth, channel and rings of each entry held (the plan), the tables
+// are smooth functions of the parameters, and the solve of the bounded
+// model differentiates through them (fitting/energy_bound_tables_internal.h).
+// After the solve the plan is found again at the result; the fit is done
+// when the plan's tables give the rows the factors of the bound found
+// afresh (the largest albedos stayed where they were), else it is solved
+// again through the new plan. It starts from the paper's model fitted to
+// every row, or to the rows within 60 degrees (FirstFitRows), whichever
+// fits every row better once bounded: fitted to every row, the paper's
+// model bends its parameters toward rows the bound lowers much (a thread
+// table, whose thread exceeds albedo 1 from about 60 degrees), while the
+// rows within 60 degrees leave grazing directions free (a measured table's
+// few rows there). Where the bound lowers no row of the first, that fit is
+// the bounded model's too. Includes Ceres' Eigen: for fitting/*.cc only.
 #pragma once
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -35,10 +36,16 @@
 
 namespace clothfit {
 
-// Largest relative change of the factors between two refits that counts
-// as settled, and the most refits.
+// A row's factor below 1 - kEnergyBoundSettled is lowered by the bound;
+// the most solves of the bounded model.
 inline constexpr double kEnergyBoundSettled = 1e-6;
-inline constexpr int kEnergyBoundRefits = 10;
+inline constexpr int kEnergyBoundRefits = 4;
+
+// Relative excess of a table entry found afresh over the entry a solve went
+// through that still counts as the same: the azimuth search's resolution
+// (its refined step, 1.9 degrees) moves a peak's value by about 1e-5, and
+// the tables' margin (kEnergyBoundMargin, 5 %) covers it.
+inline constexpr double kEnergyBoundEntrySlack = 1e-3;
 
 // The rows of `table` with both cosines >= cos 60 degrees, or <= 0 (where
 // the bound does not act): a quarter of a table sampled uniformly over the
@@ -47,75 +54,127 @@ inline constexpr int kEnergyBoundRefits = 10;
 const MeasurementTable& FirstFitRows(const MeasurementTable& table,
                                      MeasurementTable* storage);
 
+// Half the sum of squared weighted residuals (fitting/residual_weight.h,
+// sigma of the model's value where it depends on one) of `bounded` on
+// every row of `table`: how two starts of the bounded model compare.
+double BoundedCost(const MeasurementTable& table, const NoiseModel& noise,
+                   const ModelParams& bounded);
+
+// Whether `within` (the paper's model fitted to FirstFitRows) is a better
+// start of the bounded model than `every` (fitted to every row): usable,
+// and of the lower BoundedCost once each has its own bound.
+template <typename P>
+bool BetterBoundedStart(const MeasurementTable& table, const NoiseModel& noise,
+                        const FitResult<P>& within, const FitResult<P>& every) {
+  if (!within.report.usable) return false;
+  if (!every.report.usable) return true;
+  return BoundedCost(table, noise, WithEnergyBound(within.params)) <
+         BoundedCost(table, noise, WithEnergyBound(every.params));
+}
+
 // EnergyBoundFactor at every row (all 1 for a null bound).
 std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
                                        const EnergyBound* bound);
 
-// The next factors from the history of the refits: xs[k] the factors refit
-// k was fitted through, gs[k] the factors of its result's bound (equal
-// sizes, at least 1 pair). Anderson mixing over the last 3 differences;
-// clamped to [1e-12, 1] (the bound only lowers).
-std::vector<double> AndersonFactors(const std::vector<std::vector<double>>& xs,
-                                    const std::vector<std::vector<double>>& gs);
+// Marks held (EnergyBoundEntry::held) every entry of `plan` that no row's
+// factor depends on, nor would if the model were twice as bright: the
+// entries about a row's cosines where its light table exceeds half c or
+// its view table half of 1, by `tables` (the plan's at the solve's start).
+void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
+                       EnergyBoundPlan* plan);
+
+// After a solve through `*plan` ending at p, whose tables there are
+// `*bound`: whether the plan found afresh at p (`fresh`, its entries held
+// where the rows do not depend on them) agrees, every entry found afresh
+// at most kEnergyBoundEntrySlack above the solved one and every entry the
+// rows depend on derived in the solve. Where not, the entries that are
+// above or were held take the fresh plan's place in *plan, and *bound is
+// the larger of the two tables entry by entry (so that it conserves
+// energy).
+template <typename P>
+bool MergeEnergyBoundPlans(const P& p, const EnergyBoundPlan& fresh,
+                           EnergyBoundPlan* plan,
+                           std::shared_ptr<const EnergyBound>* bound) {
+  const std::shared_ptr<const EnergyBound> found = EnergyBoundByPlan(p, fresh);
+  auto merged = std::make_shared<EnergyBound>(**bound);
+  bool same = true;
+  for (int side = 0; side < 2; ++side) {
+    auto& entries = side == 0 ? plan->light : plan->view;
+    const auto& fresh_entries = side == 0 ? fresh.light : fresh.view;
+    const std::vector<double>& now = side == 0 ? found->light : found->view;
+    std::vector<double>& out = side == 0 ? merged->light : merged->view;
+    for (size_t k = 0; k < entries.size(); ++k) {
+      const bool above = now[k] > out[k] * (1.0 + kEnergyBoundEntrySlack);
+      const bool underived = !fresh_entries[k].held && entries[k].held;
+      if (above || underived) {
+        same = false;
+        entries[k] = fresh_entries[k];
+      }
+      if (above) out[k] = now[k];
+    }
+  }
+  if (!same) *bound = merged;
+  return same;
+}
 
 // Largest |g - x| / x over the rows.
 double RelativeFactorChange(const std::vector<double>& g,
                             const std::vector<double>& x);
 
 // Records in the report what the bound did: how many rows it lowers and by
-// how much, the refits it took; when it did not settle within
-// kEnergyBoundRefits refits, the fit is not converged and the message says
+// how much, the solves it took; when it did not settle within
+// kEnergyBoundRefits solves, the fit is not converged and the message says
 // so.
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
                        bool settled, FitReport* report);
 
-// The fixed point above, from `*fit` (the first fit, of FirstFitRows):
-// refit(factors, from, search) fits `table` through the rows' factors
-// from the parameters `from`, and (`search` true, the first refit) from
-// the start search too, done through the factors: the first fit's rows
-// may not tell a weak thread's parameters, and its basin need not be the
-// one of every row. Each solve has the solver's own iteration limit. On
-// return *fit holds the last refit with its bound attached, and its report
-// the bound's effect, the iterations of all solves, the starts of every
-// search and the furnace check.
+// The fit of the bounded model from `*fit` (the paper's model fitted to
+// every row of `table`, or to some, `of_every_row` false):
+// refit(plan, from, search_factor) solves the bounded model, its tables
+// through `plan`, from the parameters `from` and, with search_factor, from
+// the start search too, done through those fixed factors of the rows (the
+// first solve: the first fit's rows may not tell a weak thread's
+// parameters, nor its basin be that of every row). On return *fit holds the
+// last solve with its bound attached (the tables it was solved through), and
+// its report the bound's effect, the iterations of all solves and the furnace
+// check.
 template <typename P>
 void SettleEnergyBound(
     const MeasurementTable& table,
-    const std::function<FitResult<P>(const std::vector<double>&, const P&,
-                                     bool)>& refit,
-    FitResult<P>* fit) {
-  std::vector<std::vector<double>> xs, gs;
-  std::shared_ptr<const EnergyBound> bound;
-  bool settled = false;
+    const std::function<FitResult<P>(const EnergyBoundPlan&, const P&,
+                                     const std::vector<double>*)>& refit,
+    bool of_every_row, FitResult<P>* fit) {
+  EnergyBoundPlan plan;
+  std::shared_ptr<const EnergyBound> bound = EnergyBoundOf(fit->params, &plan);
+  std::vector<double> g = EnergyBoundFactors(table, bound.get());
+  // Where the bound lowers no row, the paper's model's fit is the bounded
+  // model's.
+  bool settled = of_every_row &&
+                 RelativeFactorChange(g, std::vector<double>(g.size(), 1.0)) <=
+                     kEnergyBoundSettled;
   int refits = 0, iterations = fit->report.iterations;
-  int starts = fit->report.starts;
+  const int starts = fit->report.starts;
   const std::string search = fit->report.search;  // the first fit's
-  for (;;) {
+  while (!settled && refits < kEnergyBoundRefits) {
     if (!fit->report.usable) return;
-    bound = EnergyBoundOf(fit->params);
-    std::vector<double> g = EnergyBoundFactors(table, bound.get());
-    if (!xs.empty()) {
-      gs.push_back(g);
-      if (RelativeFactorChange(g, xs.back()) <= kEnergyBoundSettled) {
-        settled = true;
-        break;
-      }
-    }
-    if (refits == kEnergyBoundRefits) break;
-    xs.push_back(xs.empty() ? g : AndersonFactors(xs, gs));
+    HoldUnusedEntries(table, *EnergyBoundByPlan(fit->params, plan), &plan);
     const P from = fit->params;
-    *fit = refit(xs.back(), from, true);
+    *fit = refit(plan, from, refits == 0 ? &g : nullptr);
     iterations += fit->report.iterations;
-    if (refits == 0) starts += fit->report.starts - 1;  // `from` counted
     ++refits;
+    // The tables it was solved through, against those found afresh.
+    bound = EnergyBoundByPlan(fit->params, plan);
+    EnergyBoundPlan fresh_plan;
+    EnergyBoundOf(fit->params, &fresh_plan);
+    HoldUnusedEntries(table, *bound, &fresh_plan);
+    settled = MergeEnergyBoundPlans(fit->params, fresh_plan, &plan, &bound);
+    g = EnergyBoundFactors(table, bound.get());
   }
   fit->report.iterations = iterations;
   fit->report.starts = starts;
   fit->report.search = search;
   fit->params.energy_bound = bound;
-  ReportEnergyBound(
-      gs.empty() ? EnergyBoundFactors(table, bound.get()) : gs.back(), refits,
-      settled, &fit->report);
+  ReportEnergyBound(g, refits, settled, &fit->report);
   ReportModelEnergy(ModelParams(fit->params), &fit->report);
 }
 

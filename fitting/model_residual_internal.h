@@ -22,6 +22,7 @@
 #include <memory>
 #include <vector>
 
+#include "fitting/energy_bound_tables_internal.h"
 #include "fitting/flatten_internal.h"
 #include "fitting/least_squares.h"
 #include "fitting/residual_weight.h"
@@ -136,16 +137,20 @@ class ModelResidual {
   static constexpr int kStride = 8;
   using Cost = ceres::DynamicAutoDiffCostFunction<ModelResidual, kStride>;
 
+  // bound: the energy bound's tables as a function of the blocks (a fit
+  // of the bounded model), or null.
   ModelResidual(std::shared_ptr<const Evaluator> evaluator,
                 std::shared_ptr<const FitRows> rows,
                 std::shared_ptr<const std::vector<uint32_t>> subset,
-                size_t begin, size_t end, int scale_block)
+                size_t begin, size_t end, int scale_block,
+                std::shared_ptr<const BoundTables> bound = nullptr)
       : evaluator_(std::move(evaluator)),
         rows_(std::move(rows)),
         subset_(std::move(subset)),
         begin_(begin),
         end_(end),
-        scale_block_(scale_block) {}
+        scale_block_(scale_block),
+        bound_(std::move(bound)) {}
 
   size_t Row(size_t k) const { return subset_ ? (*subset_)[k] : k; }
 
@@ -158,11 +163,18 @@ class ModelResidual {
 
   template <typename T>
   CLOTHFIT_FLATTEN bool operator()(const T* const* blocks, T* residual) const {
+    constexpr int n = kEnergyBoundNodes;
+    std::vector<T> tables(bound_ ? 2 * n : 0);
+    if (bound_ && !(*bound_)(blocks, tables.data())) return false;
     for (size_t k = begin_; k < end_; ++k) {
       const size_t i = Row(k);
       const FitRow row = (*rows_)[i];
       Vec3<T> model = (*evaluator_)(blocks, i);
       if (scale_block_ >= 0) model *= blocks[scale_block_][0];
+      if (bound_) {
+        model *= EnergyBoundFactorOf<T>(tables.data(), tables.data() + n, n,
+                                        row.row->wi.z, row.row->wo.z);
+      }
       for (int c = 0; c < row.channels; ++c) {
         *residual++ =
             WeightedResidual(model[c], row.row->value[c], row.scale[c]);
@@ -185,6 +197,7 @@ class ModelResidual {
   std::shared_ptr<const std::vector<uint32_t>> subset_;
   size_t begin_, end_;
   int scale_block_;
+  std::shared_ptr<const BoundTables> bound_;
 };
 
 // Rows per compressed residual block (ResidualRows::compress).
@@ -198,12 +211,24 @@ void AddCompressedRows(ceres::CostFunction* rows,
 
 // Sets lsq->add_residuals, lsq->predict and lsq->reweight for `rows`
 // evaluated by `evaluator` (row i of the evaluator is rows[i]) over
-// `blocks`.
+// `blocks`. With a plan, the model is the bounded one (models/bounded.h)
+// whose tables follow the parameters through that plan
+// (fitting/energy_bound_tables_internal.h; the evaluator supplies
+// BoundRho).
 template <class Evaluator>
 void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
                        FitRows rows_in, ResidualBlocks blocks,
-                       LeastSquaresProblem* lsq) {
+                       LeastSquaresProblem* lsq,
+                       const EnergyBoundPlan* plan = nullptr) {
   const std::vector<int> sizes = lsq->block_sizes;
+  std::shared_ptr<const BoundTables> bound;
+  if constexpr (HasBoundRho<Evaluator>::value) {
+    if (plan) {
+      std::vector<int> used_sizes;
+      for (int b : blocks.used) used_sizes.push_back(sizes[b]);
+      bound = MakeBoundTables(evaluator, *plan, used_sizes, blocks.scale);
+    }
+  }
   // Shared by the three: reweight changes the scales the next solve uses.
   auto rows = std::make_shared<FitRows>(std::move(rows_in));
   lsq->rows = rows->size();
@@ -223,7 +248,7 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     for (size_t begin = 0; begin < n; begin += chunk) {
       auto* functor = new ModelResidual<Evaluator>(
           evaluator, rows, subset, begin, std::min(n, begin + chunk),
-          blocks.scale);
+          blocks.scale, bound);
       residuals += functor->Residuals();
       auto* cost = ModelResidual<Evaluator>::Create(functor, blocks, sizes);
       if (chunk > 1 && which.compress) {
@@ -244,8 +269,16 @@ void SetModelResiduals(std::shared_ptr<const Evaluator> evaluator,
     }
     for (int b : blocks.used) used.push_back(x.data() + offsets[b]);
     const double s = blocks.scale >= 0 ? used[blocks.scale][0] : 1.0;
+    constexpr int n = kEnergyBoundNodes;
+    std::vector<double> tables(bound ? 2 * n : 0);
+    if (bound) (*bound)(used.data(), tables.data());
     for (size_t i = 0; i < rows->size(); ++i) {
-      each(i, (*evaluator)(used.data(), i) * s);
+      const TableRow& row = *(*rows)[i].row;
+      const double factor =
+          bound ? EnergyBoundFactorOf<double>(tables.data(), tables.data() + n,
+                                              n, row.wi.z, row.wo.z)
+                : 1.0;
+      each(i, (*evaluator)(used.data(), i) * (s * factor));
     }
   };
   lsq->row = [rows](size_t i) { return (*rows)[i].row; };

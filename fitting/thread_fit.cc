@@ -29,6 +29,17 @@ struct ThreadEvaluator {
     const Vec3<T> v = Value(p, row.wi, row.wo, table->quantity);
     return bound_factor ? v * T((*bound_factor)[i]) : v;
   }
+
+  // The paper's thread at the blocks, rho(wi, wo) cosine-weighted without
+  // the scale: what the energy bound is a quadrature of.
+  template <typename T>
+  auto BoundRho(const T* const* blocks) const {
+    ThreadParamsT<T> p;
+    FromArray(blocks[0], &p);
+    return [p](const glm::dvec3& wi, const glm::dvec3& wo) {
+      return Rho(p, wi, wo);
+    };
+  }
 };
 
 // Starts: a grid search over the widths (and eta) with the linear
@@ -71,14 +82,15 @@ std::vector<std::vector<double>> SearchThreadStarts(
   return starts;
 }
 
-// One fit of the model through the rows' bound factors (null: the paper's
-// model): from the start search, from `refit_from` alone, or (`search_too`)
-// from `refit_from` and the search's starts.
-ThreadFitResult FitThreadThrough(const MeasurementTable& table,
-                                 const ThreadFitOptions& options,
-                                 const std::vector<double>* bound_factor,
-                                 const ThreadParams* refit_from,
-                                 bool search_too = false) {
+// One fit of the model through the rows' fixed bound factors (null: the
+// paper's model), or (`plan`) of the bounded model with its tables through
+// that plan: from the start search, from `refit_from` alone, or from both
+// when `search_factor` is given (the rows' factors the search sees).
+ThreadFitResult FitThreadThrough(
+    const MeasurementTable& table, const ThreadFitOptions& options,
+    const std::vector<double>* bound_factor, const ThreadParams* refit_from,
+    const EnergyBoundPlan* plan = nullptr,
+    const std::vector<double>* search_factor = nullptr) {
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(ThreadParams());
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -98,11 +110,11 @@ ThreadFitResult FitThreadThrough(const MeasurementTable& table,
   }
   SetModelResiduals(std::make_shared<const ThreadEvaluator>(
                         ThreadEvaluator{&table, bound_factor}),
-                    TableFitRows(table, weighting), blocks, &lsq);
+                    TableFitRows(table, weighting), blocks, &lsq, plan);
   std::vector<std::vector<double>> starts;
-  if (!refit_from || search_too) {
-    starts =
-        SearchThreadStarts(table, options, weighting, lsq.specs, bound_factor);
+  if (!refit_from || search_factor) {
+    starts = SearchThreadStarts(table, options, weighting, lsq.specs,
+                                search_factor ? search_factor : bound_factor);
   }
   if (refit_from) {
     std::vector<double> x(kThreadFlatSize + 1);
@@ -142,17 +154,27 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   }
   ThreadFitResult result;
   if (options.energy_bound) {
+    result = FitThreadThrough(table, options, nullptr, nullptr);
     MeasurementTable first_storage;
-    result = FitThreadThrough(FirstFitRows(table, &first_storage), options,
-                              nullptr, nullptr);
-    result.report.rows = static_cast<int>(table.rows.size());
+    const MeasurementTable& first = FirstFitRows(table, &first_storage);
+    bool of_every_row = true;
+    if (&first != &table) {
+      ThreadFitResult within =
+          FitThreadThrough(first, options, nullptr, nullptr);
+      within.report.rows = static_cast<int>(table.rows.size());
+      if (BetterBoundedStart(table, options.solver.noise, within, result)) {
+        result = std::move(within);
+        of_every_row = false;
+      }
+    }
     SettleEnergyBound<ThreadParams>(
         table,
-        [&](const std::vector<double>& factors, const ThreadParams& from,
-            bool search) {
-          return FitThreadThrough(table, options, &factors, &from, search);
+        [&](const EnergyBoundPlan& plan, const ThreadParams& from,
+            const std::vector<double>* search_factor) {
+          return FitThreadThrough(table, options, nullptr, &from, &plan,
+                                  search_factor);
         },
-        &result);
+        of_every_row, &result);
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const auto bound = given.init ? given.init->energy_bound : nullptr;

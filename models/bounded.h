@@ -21,26 +21,66 @@
 
 namespace clothfit {
 
-// Null when the paper's model conserves energy by itself.
-inline std::shared_ptr<const EnergyBound> EnergyBoundOf(ThreadParams p) {
+namespace bounded_internal {
+
+// The paper's model at p, its bound dropped and its scale max(1, scale):
+// rho(wi, wo), the cosine-weighted value.
+struct ThreadRho {
+  ThreadParams p;
+  glm::dvec3 operator()(const glm::dvec3& wi, const glm::dvec3& wo) const {
+    return Rho(p, wi, wo);
+  }
+};
+// Evaluated with the samples' frames computed once (models/prepared.h).
+struct PreparedClothRho {
+  PreparedCloth<double> p;
+  glm::dvec3 operator()(const glm::dvec3& wi, const glm::dvec3& wo) const {
+    return Rho(p, wi, wo);
+  }
+};
+
+inline ThreadRho PaperRho(ThreadParams p) {
   p.energy_bound = nullptr;
   p.scale = std::max(1.0, p.scale);
-  return ComputeEnergyBound([&](const glm::dvec3& wi, const glm::dvec3& wo) {
-    return Rho(p, wi, wo);
-  });
+  return {p};
 }
-
-// A weave's threads run along its rotation: the azimuth search starts there.
-// Evaluated with the samples' frames computed once (models/prepared.h).
-inline std::shared_ptr<const EnergyBound> EnergyBoundOf(ClothParams c) {
+inline PreparedClothRho PaperRho(ClothParams c) {
   c.energy_bound = nullptr;
   c.scale = std::max(1.0, c.scale);
-  const PreparedCloth<double> prepared = PrepareCloth<double>(c);
-  return ComputeEnergyBound(
-      [&](const glm::dvec3& wi, const glm::dvec3& wo) {
-        return Rho(prepared, wi, wo);
-      },
-      c.rotation_deg * kPi / 180.0);
+  return {PrepareCloth<double>(c)};
+}
+
+// Where the azimuth search starts: a weave's threads run along its
+// rotation.
+inline double FirstAzimuth(const ThreadParams&) { return 0.0; }
+inline double FirstAzimuth(const ClothParams& c) {
+  return c.rotation_deg * kPi / 180.0;
+}
+
+}  // namespace bounded_internal
+
+// The bound of a thread or cloth: null when the paper's model conserves
+// energy by itself. `plan`, when not null, receives where the tables'
+// entries were taken (models/energy_bound.h).
+template <typename P>
+std::shared_ptr<const EnergyBound> EnergyBoundOf(
+    const P& p, EnergyBoundPlan* plan = nullptr) {
+  return ComputeEnergyBound(bounded_internal::PaperRho(p),
+                            bounded_internal::FirstAzimuth(p), plan);
+}
+
+// The tables of `plan` at the parameters p of a thread or cloth (always a
+// bound, even where the paper's model would need none): what a fit of the
+// bounded model through that plan evaluates.
+template <typename P>
+std::shared_ptr<const EnergyBound> EnergyBoundByPlan(
+    const P& p, const EnergyBoundPlan& plan) {
+  auto bound = std::make_shared<EnergyBound>();
+  bound->light.resize(plan.light.size());
+  bound->view.resize(plan.view.size());
+  EnergyBoundTables<double>(plan, bounded_internal::PaperRho(p),
+                            bound->light.data(), bound->view.data());
+  return bound;
 }
 
 // `params` with the bound of its own values attached (a thread or cloth);

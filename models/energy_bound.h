@@ -90,120 +90,219 @@ namespace energy_bound_internal {
 
 inline double ScalarOf(double x) { return x; }
 inline double ScalarOf(float x) { return x; }
-// A Ceres Jet: its value (the tables are constants; only the position
-// between nodes carries a derivative).
+// A Ceres Jet: its value (the position between nodes carries a derivative;
+// the node it falls after does not).
 template <typename J>
 double ScalarOf(const J& x) {
   return ScalarOf(x.a);
 }
 
-// The table linearly interpolated at c (clamped to [0, 1]) between the
-// nodes c_k = (k / (n - 1))^2.
-template <typename G>
-G Interpolate(const std::vector<double>& table, const G& c) {
-  const int n = static_cast<int>(table.size());
+// The table of n entries (of type V) linearly interpolated at c (clamped
+// to [0, 1]) between the nodes c_k = (k / (n - 1))^2, as an R.
+template <typename R, typename V, typename G>
+R Interpolate(const V* table, int n, const G& c) {
   const G x = SafeSqrt(Clamp(c, G(0.0), G(1.0))) * G(n - 1);
   const int k = std::min(n - 2, static_cast<int>(ScalarOf(x)));
-  return G(table[k]) + (x - G(k)) * G(table[k + 1] - table[k]);
+  return R(table[k]) + R(x - G(k)) * (R(table[k + 1]) - R(table[k]));
 }
 
 }  // namespace energy_bound_internal
 
-// The factor f' / f at cosines ci = wi.z and co = wo.z: 1 without a bound
-// and below the surface (where the models reflect nothing).
-template <typename G>
-G EnergyBoundFactor(const EnergyBound* b, const G& ci, const G& co) {
-  if (b == nullptr || !(ci > G(0.0)) || !(co > G(0.0))) return G(1.0);
+// The factor f' / f at cosines ci = wi.z and co = wo.z of the bound whose
+// tables (n entries each) are `light` and `view`, as an R: 1 below the
+// surface (where the models reflect nothing). Tables of Jets give the
+// factor's derivative through the bound (a fit of the bounded model).
+template <typename R, typename V, typename G>
+R EnergyBoundFactorOf(const V* light, const V* view, int n, const G& ci,
+                      const G& co) {
+  if (!(ci > G(0.0)) || !(co > G(0.0))) return R(1.0);
   using energy_bound_internal::Interpolate;
   const G fade_cos(kEnergyBoundFadeCos);
-  const G fade = Min(G(1.0), ci / fade_cos) * Min(G(1.0), co / fade_cos);
-  const G d =
-      Max(Max(ci, Interpolate(b->light, ci)), ci * Interpolate(b->view, co));
-  return fade * ci / d;
+  const R fade(Min(G(1.0), ci / fade_cos) * Min(G(1.0), co / fade_cos));
+  const R d = Max(Max(R(ci), Interpolate<R>(light, n, ci)),
+                  R(ci) * Interpolate<R>(view, n, co));
+  return fade * R(ci) / d;
 }
+
+// The same for a bound's tables; 1 without a bound.
+template <typename G>
+G EnergyBoundFactor(const EnergyBound* b, const G& ci, const G& co) {
+  if (b == nullptr) return G(1.0);
+  return EnergyBoundFactorOf<G>(b->light.data(), b->view.data(),
+                                static_cast<int>(b->light.size()), ci, co);
+}
+
+// How one entry of a bound's table is computed: the albedo of one channel
+// toward one azimuth (radians) by the midpoint rule over `rings` rings, or
+// (copy) the next node's entry. ComputeEnergyBound finds the azimuth and
+// channel of the largest albedo; with them held, the entry is a smooth
+// function of the model's parameters (EnergyBoundTables), whose
+// derivative a fit of the bounded model needs. A held entry is taken as
+// given where EnergyBoundTables is given values (a fit differentiates only
+// the entries that its rows' factors depend on).
+struct EnergyBoundEntry {
+  double phi = 0.0;
+  int channel = 0;
+  int rings = 16;
+  bool copy = false;
+  bool held = false;
+};
+
+struct EnergyBoundPlan {
+  std::vector<EnergyBoundEntry> light, view;  // kEnergyBoundNodes each
+};
 
 namespace energy_bound_internal {
 
-// The largest albedo over azimuth at polar cosine c, per side (light:
-// c A_L, the integral of rho(w, l) l.z over l; view: A_V, the integral of
-// rho(l, w) over l), by the midpoint rule q: at n_phi azimuths from phi0,
-// then halving the step about the largest 3 times (a narrow peak between
-// the azimuths).
-template <typename Rho>
-double LargestAlbedo(const Rho& rho, bool light, double c,
-                     const HemisphereQuadrature& q, double phi0, int n_phi) {
+// The node's cosine: beyond 87 degrees the tables hold the values at 87.
+inline double NodeCos(int k, int n) {
+  return std::max(kEnergyBoundFadeCos, EnergyBoundNode(k, n));
+}
+
+// The midpoint rule of `rings` rings (16 or 32), made once.
+inline const HemisphereQuadrature& Quadrature(int rings) {
+  static const HemisphereQuadrature coarse = MakeHemisphereQuadrature(16);
+  static const HemisphereQuadrature fine = MakeHemisphereQuadrature(32);
+  return rings > 16 ? fine : coarse;
+}
+
+// The albedo of each channel at polar cosine c toward azimuth phi, per side
+// (light: c A_L, the integral of rho(w, l) l.z over l; view: A_V, the
+// integral of rho(l, w) over l), by the midpoint rule q. rho(wi, wo)
+// returns the cosine-weighted value as a Vec3<T>.
+template <typename T, typename Rho>
+Vec3<T> AlbedoAt(const Rho& rho, bool light, double c, double phi,
+                 const HemisphereQuadrature& q) {
   const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
-  auto at = [&](double phi) {
-    const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), c);
-    glm::dvec3 a(0.0);
-    for (size_t i = 0; i < q.w.size(); ++i) {
-      a += light ? q.weight[i] * q.w[i].z * rho(w, q.w[i])
-                 : q.weight[i] * rho(q.w[i], w);
-    }
-    return std::max({a.x, a.y, a.z});
-  };
-  double step = 2.0 * kPi / n_phi, best_phi = phi0, best = -1.0;
-  for (int j = 0; j < n_phi; ++j) {
-    const double phi = phi0 + step * j, a = at(phi);
-    if (a > best) best = a, best_phi = phi;
+  const glm::dvec3 w(s * std::cos(phi), s * std::sin(phi), c);
+  Vec3<T> a(T(0.0));
+  for (size_t i = 0; i < q.w.size(); ++i) {
+    a += light ? rho(w, q.w[i]) * T(q.weight[i] * q.w[i].z)
+               : rho(q.w[i], w) * T(q.weight[i]);
   }
+  return a;
+}
+
+// The entry of the largest albedo over azimuth and channel at polar cosine
+// c: n_phi azimuths from phi0, then the step halved about the largest 3
+// times (a narrow peak between the azimuths). Its value goes to *value.
+template <typename Rho>
+EnergyBoundEntry LargestAlbedo(const Rho& rho, bool light, double c, int rings,
+                               double phi0, int n_phi, double* value) {
+  const HemisphereQuadrature& q = Quadrature(rings);
+  EnergyBoundEntry best{phi0, 0, rings, false};
+  double best_value = -1.0;
+  auto visit = [&](double phi) {
+    const glm::dvec3 a = AlbedoAt<double>(rho, light, c, phi, q);
+    for (int channel = 0; channel < 3; ++channel) {
+      if (a[channel] > best_value) {
+        best_value = a[channel];
+        best = {phi, channel, rings, false};
+      }
+    }
+  };
+  double step = 2.0 * kPi / n_phi;
+  for (int j = 0; j < n_phi; ++j) visit(phi0 + step * j);
   for (int level = 0; level < 3; ++level) {
     step *= 0.5;
-    const double centre = best_phi;
-    for (double phi : {centre - step, centre + step}) {
-      const double a = at(phi);
-      if (a > best) best = a, best_phi = phi;
-    }
+    const double centre = best.phi;
+    visit(centre - step);
+    visit(centre + step);
   }
+  *value = best_value;
   return best;
 }
 
 }  // namespace energy_bound_internal
 
-// The bound of a model given by rho(wi, wo) (a callable returning
+// The tables of `plan` for the model rho (as in AlbedoAt), widened by
+// kEnergyBoundMargin: light[k], view[k] for k < kEnergyBoundNodes. With
+// `held` (light then view), the held entries are those values instead.
+template <typename T, typename Rho>
+void EnergyBoundTables(const EnergyBoundPlan& plan, const Rho& rho, T* light,
+                       T* view, const double* held = nullptr) {
+  using energy_bound_internal::AlbedoAt;
+  using energy_bound_internal::NodeCos;
+  using energy_bound_internal::Quadrature;
+  const int n = static_cast<int>(plan.light.size());
+  for (int side = 0; side < 2; ++side) {
+    const std::vector<EnergyBoundEntry>& entries =
+        side == 0 ? plan.light : plan.view;
+    T* out = side == 0 ? light : view;
+    for (int k = n - 1; k >= 0; --k) {
+      const EnergyBoundEntry& e = entries[k];
+      if (e.copy) {
+        out[k] = out[k + 1];
+        continue;
+      }
+      if (e.held && held) {
+        out[k] = T(held[side * n + k]);
+        continue;
+      }
+      const Vec3<T> a = AlbedoAt<T>(rho, side == 0, NodeCos(k, n), e.phi,
+                                    Quadrature(e.rings));
+      out[k] = T(kEnergyBoundMargin) * a[e.channel];
+    }
+  }
+}
+
+// Where the bound of a model given by rho(wi, wo) (a callable returning
 // glm::dvec3, the cosine-weighted value; every channel is bounded by the
-// largest): at each node the largest albedo over azimuth of each side
-// (24 azimuths from phi0, radians: a weave's rotation, where its threads'
-// peaks are; then refined about the largest), by the midpoint rule
-// (models/albedo.h) over 16 rings; beyond 80 degrees, where an albedo
-// over 0.5 may be a thread's narrow peak along its axis, over 32 rings
-// (the satin's thread at 87 degrees: 16 rings 16 % low, 32 rings 1 %).
-// Null when the model needs no bound (every c A_L <= c and A_V <= 1 even
-// with the margin).
+// largest) takes its entries: at each node the largest albedo over azimuth
+// and channel of each side (24 azimuths from phi0, radians: a weave's
+// rotation, where its threads' peaks are; then refined about the largest),
+// by the midpoint rule (models/albedo.h) over 16 rings; beyond 80 degrees,
+// where an albedo over 0.5 may be a thread's narrow peak along its axis,
+// over 32 rings (the satin's thread at 87 degrees: 16 rings 16 % low, 32
+// rings 1 %).
 template <typename Rho>
-std::shared_ptr<const EnergyBound> ComputeEnergyBound(const Rho& rho,
-                                                      double phi0 = 0.0) {
+EnergyBoundPlan PlanEnergyBound(const Rho& rho, double phi0 = 0.0) {
   using energy_bound_internal::LargestAlbedo;
+  using energy_bound_internal::NodeCos;
   constexpr int kAzimuths = 24, kRings = 16, kGrazingRings = 32;
   constexpr double kCos80 = 0.17364817766693033;
-  const HemisphereQuadrature coarse = MakeHemisphereQuadrature(kRings);
-  const HemisphereQuadrature fine = MakeHemisphereQuadrature(kGrazingRings);
   const int n = kEnergyBoundNodes;
-  std::vector<double> light(n, 0.0), view(n, 0.0);
+  EnergyBoundPlan plan;
+  plan.light.resize(n);
+  plan.view.resize(n);
   for (int k = n - 1; k >= 0; --k) {
-    const double c = std::max(kEnergyBoundFadeCos, EnergyBoundNode(k, n));
     if (k + 1 < n && EnergyBoundNode(k + 1, n) <= kEnergyBoundFadeCos) {
-      light[k] = light[k + 1];  // beyond 87 degrees: the values at 87
-      view[k] = view[k + 1];
+      plan.light[k].copy = plan.view[k].copy = true;  // beyond 87 degrees
       continue;
     }
-    light[k] = LargestAlbedo(rho, true, c, coarse, phi0, kAzimuths);
-    view[k] = LargestAlbedo(rho, false, c, coarse, phi0, kAzimuths);
-    if (c < kCos80 && light[k] > 0.5 * c) {
-      light[k] = LargestAlbedo(rho, true, c, fine, phi0, kAzimuths);
-    }
-    if (c < kCos80 && view[k] > 0.5) {
-      view[k] = LargestAlbedo(rho, false, c, fine, phi0, kAzimuths);
+    const double c = NodeCos(k, n);
+    for (int side = 0; side < 2; ++side) {
+      const bool light = side == 0;
+      double a = 0.0;
+      EnergyBoundEntry e =
+          LargestAlbedo(rho, light, c, kRings, phi0, kAzimuths, &a);
+      if (c < kCos80 && a > (light ? 0.5 * c : 0.5)) {
+        e = LargestAlbedo(rho, light, c, kGrazingRings, phi0, kAzimuths, &a);
+      }
+      (light ? plan.light : plan.view)[k] = e;
     }
   }
+  return plan;
+}
+
+// The bound of rho (PlanEnergyBound): null when the model needs none
+// (every c A_L <= c and A_V <= 1 even with the margin). `plan_out`, when
+// not null, receives the plan.
+template <typename Rho>
+std::shared_ptr<const EnergyBound> ComputeEnergyBound(
+    const Rho& rho, double phi0 = 0.0, EnergyBoundPlan* plan_out = nullptr) {
+  EnergyBoundPlan plan = PlanEnergyBound(rho, phi0);
+  const int n = kEnergyBoundNodes;
   auto bound = std::make_shared<EnergyBound>();
+  bound->light.resize(n);
+  bound->view.resize(n);
+  EnergyBoundTables<double>(plan, rho, bound->light.data(), bound->view.data());
   bool needed = false;
   for (int k = 0; k < n; ++k) {
-    bound->light.push_back(kEnergyBoundMargin * light[k]);
-    bound->view.push_back(kEnergyBoundMargin * view[k]);
-    const double c = std::max(kEnergyBoundFadeCos, EnergyBoundNode(k, n));
+    const double c = energy_bound_internal::NodeCos(k, n);
     needed = needed || bound->light[k] > c || bound->view[k] > 1.0;
   }
+  if (plan_out) *plan_out = std::move(plan);
   if (!needed) return nullptr;
   return bound;
 }

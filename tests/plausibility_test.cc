@@ -188,14 +188,29 @@ TEST(ModelEnergy, BothSidesAreCheckedAndTheBoundedModelsConserveEnergy) {
   }
 }
 
+// The sum of squares over the table's rows of the paper's model at
+// `paper` bounded by its own bound, found afresh (models/bounded.h).
+double BoundedSquares(const ModelParams& paper, const MeasurementTable& table) {
+  const ModelParams bounded = WithEnergyBound(paper);
+  double sum = 0.0;
+  for (const TableRow& row : table.rows) {
+    const glm::dvec3 d =
+        Evaluate(bounded, row.wi, row.wo, table.quantity) - row.value;
+    sum += glm::dot(d, d);
+  }
+  return sum;
+}
+
 // A bounded cloth fit (--energy-bound) writes the bounded model it fitted:
-// on a noise-free table of
-// the bounded linen (its scale free) it recovers the scale, carries its
-// bound, conserves energy and reproduces the table. The same table 3 x
-// brighter (data on a wrong calibration) cannot be a surface that
-// conserves energy: the scale and the bound chase each other, and the fit
-// says it did not settle (not converged) rather than pass.
-TEST(ClothEnergy, BoundedFitsWriteTheirBoundAndBrightDataAreNotConverged) {
+// on a noise-free table of the bounded linen (its scale free) it recovers
+// the scale, carries its bound, conserves energy and reproduces the table.
+// The same table 3 x brighter (data on a wrong calibration) cannot be a
+// surface that conserves energy: the fit reaches the bounded model's
+// optimum (its cost, the sum of squares under absolute noise, is lower
+// than at a scale 2 % off either way, which a solve holding the bound's
+// factors fixed does not reach), still conserves energy, and its error
+// shows the misfit.
+TEST(ClothEnergy, BoundedFitsWriteTheirBoundAndReachTheBoundedOptimum) {
   ClothParams linen;
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const ModelParams truth = WithEnergyBound(linen);
@@ -207,21 +222,67 @@ TEST(ClothEnergy, BoundedFitsWriteTheirBoundAndBrightDataAreNotConverged) {
     options.fit_scale = true;
     options.energy_bound = true;
     options.free_only = {"scale"};  // the weave is the preset's
+    options.solver.noise.kind = NoiseKind::kAbsolute;
     const ClothFitResult fit = FitCloth(table, linen, options);
     ASSERT_TRUE(fit.report.usable) << fit.report.message;
     ASSERT_NE(fit.params.energy_bound, nullptr);
-    EXPECT_NE(fit.report.energy_bound.find("refit"), std::string::npos);
+    EXPECT_NE(fit.report.energy_bound.find("solve(s) of the bounded model"),
+              std::string::npos)
+        << fit.report.energy_bound;
+    EXPECT_TRUE(fit.report.converged) << fit.report.message;
     EXPECT_LE(ModelEnergy(fit.params).max_albedo, 1.0);
     EXPECT_LE(fit.report.max_albedo, 1.0);
+    EXPECT_LT(
+        std::abs(RelativeRms(fit.params, table) - fit.report.relative_rms),
+        1e-9);  // written = fitted
     if (brightness == 1.0) {
-      EXPECT_TRUE(fit.report.converged) << fit.report.message;
       EXPECT_NEAR(fit.params.scale, 1.0, 1e-6);
       EXPECT_LT(fit.report.relative_rms, 1e-6);
-      EXPECT_LT(RelativeRms(fit.params, table), 1e-6);  // written = fitted
     } else {
-      EXPECT_FALSE(fit.report.converged);
-      EXPECT_NE(fit.report.message.find("did not settle"), std::string::npos)
-          << fit.report.message;
+      EXPECT_GT(fit.report.relative_rms, 0.3);
+      auto squares = [&](double scale) {
+        ClothParams c = fit.params;
+        c.scale = scale;
+        return BoundedSquares(c, table);
+      };
+      const double best = squares(fit.params.scale);
+      EXPECT_LT(best, squares(1.02 * fit.params.scale));
+      EXPECT_LT(best, squares(fit.params.scale / 1.02));
+    }
+  }
+}
+
+// The bounded fit reaches the bounded model's optimum, not a point where
+// the rows' bound factors, held fixed, would have it: on a table of the
+// bounded satin thread with 3 % noise (the bound lowers most rows toward
+// grazing), moving any parameter 0.5 % either way from the fit does not
+// lower the sum of squares (absolute noise) of the bounded model, its
+// bound found afresh at each point.
+TEST(ThreadEnergy, BoundedFitIsAtTheBoundedModelsOptimum) {
+  ClothParams satin;
+  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
+  ThreadParams truth = satin.threads[0].params;
+  truth.energy_bound = EnergyBoundOf(truth);
+  const MeasurementTable table = testing_util::NoisyTable(truth, 0.03, 5, 600);
+  ThreadFitOptions options;
+  options.energy_bound = true;
+  options.solver.noise.kind = NoiseKind::kAbsolute;
+  const ThreadFitResult fit = FitThread(table, options);
+  ASSERT_TRUE(fit.report.usable) << fit.report.message;
+  EXPECT_TRUE(fit.report.converged) << fit.report.message;
+  auto squares = [&](const std::vector<double>& x) {
+    ThreadParams p;
+    FromArray(x.data(), &p);
+    return BoundedSquares(p, table);
+  };
+  std::vector<double> x(kThreadFlatSize);
+  ToArray(fit.params, x.data());
+  const double best = squares(x);
+  for (int i = 0; i < kThreadFlatSize; ++i) {
+    for (double step : {1.005, 1.0 / 1.005}) {
+      std::vector<double> moved = x;
+      moved[i] *= step;
+      EXPECT_LE(best, squares(moved) * (1.0 + 1e-9)) << i << " " << step;
     }
   }
 }
@@ -265,7 +326,8 @@ TEST(ClothEnergy, BoundedFitFindsTheSatinsWeakWeftFromTheGenericStart) {
   ClothParams satin;
   ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
   const ModelParams truth = WithEnergyBound(satin);
-  const MeasurementTable table = testing_util::NoisyTable(truth, 0.02, 20130703, 2000);
+  const MeasurementTable table =
+      testing_util::NoisyTable(truth, 0.02, 20130703, 2000);
   ClothFitOptions options;
   options.energy_bound = true;
   const ClothFitResult fit = FitCloth(table, GenericClothStart(satin), options);
