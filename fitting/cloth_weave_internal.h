@@ -13,12 +13,14 @@
 
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "fitting/least_squares.h"
 #include "io/table.h"
 #include "models/evaluate.h"
 #include "models/microcylinder_cloth.h"
+#include "models/prepared.h"
 
 namespace clothfit {
 
@@ -195,13 +197,21 @@ struct ClothEvaluator {
   }
 
   // The paper's cloth at the blocks, rho(wi, wo) cosine-weighted without
-  // the scale: what the energy bound is a quadrature of.
+  // the scale: what the energy bound is a quadrature of. In double with
+  // its sample frames computed once (models/prepared.h).
   template <typename T>
   auto BoundRho(const T* const* blocks) const {
-    return [c = ClothFromBlocks(*weave, blocks, true)](const glm::dvec3& wi,
-                                                       const glm::dvec3& wo) {
-      return Rho(c, wi, wo);
-    };
+    if constexpr (std::is_same_v<T, double>) {
+      return [c = PrepareCloth<double>(ClothFromBlocks(*weave, blocks, true))](
+                 const glm::dvec3& wi, const glm::dvec3& wo) {
+        return Rho(c, wi, wo);
+      };
+    } else {
+      return [c = ClothFromBlocks(*weave, blocks, true)](const glm::dvec3& wi,
+                                                         const glm::dvec3& wo) {
+        return Rho(c, wi, wo);
+      };
+    }
   }
 };
 

@@ -86,8 +86,8 @@ void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
         energy_bound_internal::Interpolate<double>(tables.light.data(), n, ci);
     const double v =
         energy_bound_internal::Interpolate<double>(tables.view.data(), n, co);
-    if (l > 0.5 * ci) mark(0, ci);
-    if (v > 0.5) mark(1, co);
+    if (l > 0.8 * ci) mark(0, ci);
+    if (v > 0.8) mark(1, co);
   }
   for (int side = 0; side < 2; ++side) {
     auto& entries = side == 0 ? plan->light : plan->view;

@@ -77,9 +77,11 @@ std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
                                        const EnergyBound* bound);
 
 // Marks held (EnergyBoundEntry::held) every entry of `plan` that no row's
-// factor depends on, nor would if the model were twice as bright: the
-// entries about a row's cosines where its light table exceeds half c or
-// its view table half of 1, by `tables` (the plan's at the solve's start).
+// factor depends on, nor would if the model were 25 % brighter: the
+// entries about a row's cosines where its light table exceeds 0.8 c or
+// its view table 0.8, by `tables` (the plan's at the solve's start). An
+// entry that a row comes to depend on during the solve is found afterwards
+// (MergeEnergyBoundPlans) and solved again with its derivative.
 void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
                        EnergyBoundPlan* plan);
 
