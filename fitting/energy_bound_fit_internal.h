@@ -9,21 +9,19 @@
 // are smooth functions of the parameters, and the solve of the bounded
 // model differentiates through them (fitting/energy_bound_tables_internal.h).
 // After the solve the plan is found again at the result; the fit is done
-// when the plan's tables give the rows the factors of the bound found
-// afresh (the largest albedos stayed where they were), else it is solved
-// again through the new plan. It starts from the paper's model fitted to
-// every row, or to the rows within 60 degrees (FirstFitRows), whichever
-// fits every row better once bounded: fitted to every row, the paper's
-// model bends its parameters toward rows the bound lowers much (a thread
-// table, whose thread exceeds albedo 1 from about 60 degrees), while the
+// when the entries found afresh are those it was solved through (the
+// largest albedos stayed where they were; MergeEnergyBoundPlans), else it
+// is solved again through the merged plan. It starts from the paper's model
+// fitted to every row, or to the rows within 60 degrees (FirstFitRows),
+// whichever fits every row better once bounded: fitted to every row, the
+// paper's model bends its parameters toward rows the bound lowers much (a
+// thread table, whose thread exceeds albedo 1 from about 60 degrees), while the
 // rows within 60 degrees leave grazing directions free (a measured table's
 // few rows there). Where the bound lowers no row of the first, that fit is
-// the bounded model's too. Includes Ceres' Eigen: for fitting/*.cc only.
+// the bounded model's too. For fitting/*.cc only (not installed).
 #pragma once
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
