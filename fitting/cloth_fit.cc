@@ -259,8 +259,8 @@ ClothFitResult FitClothThrough(
   // The fit writes a cloth that conserves energy (scaled down if need
   // be): among the starts' solutions, one that conserves energy as it
   // stands wins over a lower cost that would be scaled down.
-  const bool conserve = options.conserve_energy && !options.energy_bound &&
-                        !bound_factor && !plan;
+  const bool conserve =
+      options.conserve_energy && !options.energy_bound && !bound_factor;
   if (conserve) {
     lsq.plausible = [weave,
                      channels = table.channels](const std::vector<double>& x) {
