@@ -96,7 +96,7 @@ ReadTableResult ReadTable(const std::string& path,
   std::error_code error;
   const uintmax_t file_bytes = std::filesystem::file_size(path, error);
   size_t bytes_read = 0;
-  bool reserved = error.value() != 0;
+  bool reserved = error.value() != 0 || options.row_sink;
   ReadFileInChunks(path, [&](std::string_view chunk) {
     bytes_read += chunk.size();
     if (options.progress && error.value() == 0) {
@@ -126,6 +126,35 @@ ReadTableResult ReadTable(const std::string& path,
   });
   parser.Line(pending);  // the last line (empty after a final '\n')
   return parser.Finish();
+}
+
+MeasurementTable ReadTableHeader(const std::string& path,
+                                 const ReadTableOptions& options) {
+  struct HeaderDone {};  // stops the read at the header
+  TableParser parser(path, options);
+  std::string pending;
+  try {
+    ReadFileInChunks(path, [&](std::string_view chunk) {
+      size_t start = 0;
+      while (true) {
+        const size_t end = chunk.find('\n', start);
+        if (end == std::string_view::npos) break;
+        pending.append(chunk.substr(start, end - start));
+        parser.Line(pending);
+        pending.clear();
+        if (parser.HeaderRead()) throw HeaderDone();
+        start = end + 1;
+      }
+      pending.append(chunk.substr(start));
+      parser.CheckLineLength(pending.size());
+    });
+  } catch (const HeaderDone&) {
+    return parser.table();
+  }
+  parser.Line(pending);
+  if (parser.HeaderRead()) return parser.table();
+  parser.Finish();                         // throws: no header
+  throw InputError(path + ": no header");  // not reached
 }
 
 ReadTableResult ParseTable(const std::string& text, const std::string& name,

@@ -86,6 +86,12 @@ struct ReadTableOptions {
   // ReadTable: called after each piece of the file with the bytes read so
   // far and the file's size (for a progress line); may be empty.
   std::function<void(double bytes_read, double bytes_total)> progress;
+  // When set, each valid row is handed to it, in file order, and not kept:
+  // the result's table has the columns and metadata but no rows (a fit
+  // that reads a table of millions of rows into its own compact form
+  // never holds the rows). `table` is that header.
+  std::function<void(const MeasurementTable& table, const TableRow& row)>
+      row_sink;
 };
 
 struct ReadTableResult {
@@ -109,6 +115,11 @@ std::optional<std::string> ArbitraryScaleNote(const MeasurementTable& table);
 // range, zero direction vector, negative sigma, wrong field count, empty table.
 ReadTableResult ReadTable(const std::string& path,
                           const ReadTableOptions& options = {});
+// The columns and metadata of a table (no rows), reading no further than
+// its header line. Throws InputError as ReadTable on a bad header, or
+// when the file ends before one.
+MeasurementTable ReadTableHeader(const std::string& path,
+                                 const ReadTableOptions& options = {});
 // Same, from text already in memory; `name` is used in messages.
 ReadTableResult ParseTable(const std::string& text, const std::string& name,
                            const ReadTableOptions& options = {});

@@ -326,17 +326,31 @@ void TableParser::Line(std::string_view content) {
   if (header_line_ == 0) {
     ParseHeader(content, line_);
     header_line_ = line_;
+    result_.table.source = name_;
     return;
   }
+  TableRow row;
   if (!options_.skip_invalid) {
-    ParseRow(content, line_);
-    return;
+    ParseRow(content, line_, &row);
+  } else {
+    try {
+      ParseRow(content, line_, &row);
+    } catch (const InputError& error) {
+      if (result_.skipped == 0) result_.first_skip_reason = error.what();
+      ++result_.skipped;
+      return;
+    }
   }
-  try {
-    ParseRow(content, line_);
-  } catch (const InputError& error) {
-    if (result_.skipped == 0) result_.first_skip_reason = error.what();
-    ++result_.skipped;
+  // Outside the try: what the sink throws is not a row to skip.
+  Accept(row);
+}
+
+void TableParser::Accept(const TableRow& row) {
+  ++rows_;
+  if (options_.row_sink) {
+    options_.row_sink(result_.table, row);
+  } else {
+    result_.table.rows.push_back(row);
   }
 }
 
@@ -358,7 +372,7 @@ ReadTableResult TableParser::Finish() {
          "no header (expected a line of column names such as "
          "theta_i,phi_i,theta_o,phi_o,r,g,b)");
   }
-  if (result_.table.rows.empty()) {
+  if (rows_ == 0) {
     if (result_.skipped > 0) {
       Fail(header_line, 0,
            "table has no rows: all " + std::to_string(result_.skipped) +
@@ -387,7 +401,7 @@ void TableParser::SampleValue(double value) {
 
 void TableParser::AddWarnings() {
   const MeasurementTable& table = result_.table;
-  const size_t rows = table.rows.size();
+  const size_t rows = rows_;
   // Radians read as degrees: every angle within [0, pi/2] (theta) and
   // [-2 pi, 2 pi] (phi) means directions within 1.6 degrees of the normal,
   // which no gonioreflectometer table is.

@@ -83,7 +83,12 @@ class TableParser {
   // checks before it gathers more of one line.
   void CheckLineLength(size_t bytes) const;
   ReadTableResult Finish();
-  size_t rows() const { return result_.table.rows.size(); }
+  // Rows read so far (kept, or handed to the options' row_sink).
+  size_t rows() const { return rows_; }
+  // Whether the header line has been read; then table() has the columns
+  // and metadata (no rows yet).
+  bool HeaderRead() const { return header_line_ > 0; }
+  const MeasurementTable& table() const { return result_.table; }
   void Reserve(size_t rows) { result_.table.rows.reserve(rows); }
 
  private:
@@ -99,7 +104,10 @@ class TableParser {
   // The first present column in [first, first + count), or -1.
   int FirstPresent(int first, int count) const;
   bool Has(int column) const { return field_of_[column] >= 0; }
-  void ParseRow(std::string_view text, int line);
+  // Parses and checks a row into *row (what AddWarnings looks at is noted).
+  void ParseRow(std::string_view text, int line, TableRow* row);
+  // A valid row: kept, or handed to the row sink.
+  void Accept(const TableRow& row);
   double Angle(int column) const;
   // The separator of the header line: of ',', ';' and tab the one it holds
   // most often (',' when it holds none); the rows use the same.
@@ -119,6 +127,7 @@ class TableParser {
   const ReadTableOptions& options_;
   bool has_values_ = true;  // false: a directions-only table
   ReadTableResult result_;
+  size_t rows_ = 0;       // valid rows read
   int line_ = 0;          // lines seen
   int header_line_ = 0;   // line of the header, 0 before it
   bool radians_ = false;  // the '# units' line's

@@ -18,7 +18,7 @@ double TableParser::Angle(int column) const {
   return column_radians_[column] ? numbers_[column] : Radians(numbers_[column]);
 }
 
-void TableParser::ParseRow(std::string_view text, int line) {
+void TableParser::ParseRow(std::string_view text, int line, TableRow* out) {
   const std::vector<std::string_view> fields = SplitFields(text, separator_);
   const size_t expected = header_names_.size();
   if (fields.size() < expected) {
@@ -203,7 +203,7 @@ void TableParser::ParseRow(std::string_view text, int line) {
                     ? row.value.x
                     : (row.value.x + row.value.y + row.value.z) / 3.0);
   }
-  result_.table.rows.push_back(row);
+  *out = row;
 }
 
 }  // namespace table_internal

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 #include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "io/input_error.h"
@@ -840,6 +841,74 @@ TEST(ReadTable, DirectionsOnlyWhenValuesOptional) {
   EXPECT_EQ(t.rows[0].value, glm::dvec3(0.0));
   EXPECT_NEAR(t.rows[0].wo.x, -std::sin(20 * 3.14159265358979323846 / 180),
               1e-15);
+}
+
+// A row sink sees every valid row in file order, the table keeps none, and
+// what the sink throws is its own error, not a row to skip.
+TEST(TableTest, RowSinkGetsTheValidRowsInOrderAndTheTableKeepsNone) {
+  const fs::path dir = testing_util::FreshTestDir("table_");
+  const fs::path path = dir / "t.csv";
+  WriteText(path,
+            "# quantity: brdf\n"
+            "theta_i,phi_i,theta_o,phi_o,value\n"
+            "10,0,20,180,0.5\n"
+            "10,0,25,180,x\n"  // not a number
+            "30,0,40,90,0.25\n");
+  ReadTableOptions options;
+  options.skip_invalid = true;
+  std::vector<TableRow> seen;
+  options.row_sink = [&](const MeasurementTable& table, const TableRow& row) {
+    EXPECT_EQ(table.channels, 1);  // the header, before the rows
+    EXPECT_TRUE(table.rows.empty());
+    seen.push_back(row);
+  };
+  const ReadTableResult streamed = ReadTable(path.string(), options);
+  EXPECT_TRUE(streamed.table.rows.empty());
+  EXPECT_EQ(streamed.skipped, 1);
+  EXPECT_EQ(streamed.table.source, path.string());
+  options.row_sink = nullptr;
+  const ReadTableResult held = ReadTable(path.string(), options);
+  ASSERT_EQ(held.table.rows.size(), 2u);
+  ASSERT_EQ(seen.size(), 2u);
+  for (size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].wi, held.table.rows[i].wi);
+    EXPECT_EQ(seen[i].wo, held.table.rows[i].wo);
+    EXPECT_EQ(seen[i].value, held.table.rows[i].value);
+    EXPECT_EQ(seen[i].source_line, held.table.rows[i].source_line);
+  }
+  EXPECT_EQ(seen[1].source_line, 5);
+
+  options.row_sink = [](const MeasurementTable&, const TableRow& row) {
+    if (row.source_line == 5) throw InputError("sink: refused");
+  };
+  EXPECT_EQ(testing_util::ErrorOf([&] { ReadTable(path.string(), options); }),
+            "sink: refused");
+}
+
+// The header alone: columns and metadata, read no further than the header
+// line (the bad row after it is not seen); a file without one is refused.
+TEST(TableTest, ReadTableHeaderStopsAtTheHeader) {
+  const fs::path dir = testing_util::FreshTestDir("table_");
+  const fs::path path = dir / "t.csv";
+  WriteText(path,
+            "# quantity: cosine_weighted\n"
+            "# lab: ours\n"
+            "theta_i,phi_i,theta_o,phi_o,r,g,b,sigma,s,t\n"
+            "10,0,20,180,not a number,0.5,0.5,0.1,0,0\n");
+  const MeasurementTable header = ReadTableHeader(path.string());
+  EXPECT_TRUE(header.rows.empty());
+  EXPECT_EQ(header.quantity, Quantity::kCosineWeighted);
+  EXPECT_EQ(header.channels, 3);
+  EXPECT_TRUE(header.has_sigma);
+  EXPECT_TRUE(header.has_texels);
+  EXPECT_FALSE(header.has_alpha);
+  EXPECT_EQ(header.Meta("lab").value_or(""), "ours");
+  EXPECT_EQ(header.source, path.string());
+
+  WriteText(path, "# quantity: brdf\n# only metadata\n");
+  testing_util::ExpectHas(
+      testing_util::ErrorOf([&] { ReadTableHeader(path.string()); }),
+      {path.string(), "no header"});
 }
 
 }  // namespace
