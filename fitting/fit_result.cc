@@ -21,8 +21,13 @@ std::string SourceOf(const MeasurementTable& table) {
 }  // namespace
 
 void RequireWeightedRows(const MeasurementTable& table) {
-  if (std::none_of(table.rows.begin(), table.rows.end(),
-                   [](const TableRow& row) { return row.weight > 0.0; })) {
+  RequireWeightedRows(
+      table, std::any_of(table.rows.begin(), table.rows.end(),
+                         [](const TableRow& row) { return row.weight > 0.0; }));
+}
+
+void RequireWeightedRows(const MeasurementTable& table, bool any_weighted) {
+  if (!any_weighted) {
     throw InputError(SourceOf(table) +
                      ": every row has weight 0: nothing to fit");
   }
@@ -33,7 +38,12 @@ int CountNotReflection(const MeasurementTable& table,
   const size_t count = static_cast<size_t>(
       std::count_if(table.rows.begin(), table.rows.end(),
                     [](const TableRow& row) { return !IsReflectionRow(row); }));
-  if (count > 0 && count == table.rows.size()) {
+  return CountNotReflection(table, count, table.rows.size(), model);
+}
+
+int CountNotReflection(const MeasurementTable& table, size_t count, size_t rows,
+                       const std::string& model) {
+  if (count > 0 && count == rows) {
     throw InputError(
         SourceOf(table) +
         ": no row has both the light and the view above the surface (wi.z "

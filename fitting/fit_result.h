@@ -155,12 +155,17 @@ struct FitResult {
 // Throws InputError naming the table's source when no row has a weight
 // above 0 (nothing to fit).
 void RequireWeightedRows(const MeasurementTable& table);
+// The same for rows counted as read (`table`: their source).
+void RequireWeightedRows(const MeasurementTable& table, bool any_weighted);
 
 // For a reflection-only model (`model`: "cloth", "lafortune"): the number
 // of rows of `table` with the light or the view below the surface, which
 // its fit leaves out and counts in FitReport::rows_not_used. Throws
 // InputError naming the table's source when no row is left.
 int CountNotReflection(const MeasurementTable& table, const std::string& model);
+// The same for rows counted as read: `not_reflection` of `rows`.
+int CountNotReflection(const MeasurementTable& table, size_t not_reflection,
+                       size_t rows, const std::string& model);
 
 // One-channel tables fit one value of an rgb parameter: every reported
 // parameter named PREFIX`name`_g or PREFIX`name`_b takes the value of

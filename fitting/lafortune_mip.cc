@@ -15,13 +15,28 @@
 
 namespace clothfit {
 
-Weighting LafortuneWeighting(const MeasurementTable& table,
-                             const NoiseModel& noise) {
+namespace {
+
+NoiseModel LafortuneNoise(const MeasurementTable& table,
+                          const NoiseModel& noise) {
   NoiseModel n = noise;
   if (n.kind == NoiseKind::kDefault && !table.has_sigma) {
     n.kind = NoiseKind::kAbsolute;
   }
-  return Weighting(table, n);
+  return n;
+}
+
+}  // namespace
+
+Weighting LafortuneWeighting(const MeasurementTable& table,
+                             const NoiseModel& noise) {
+  return Weighting(table, LafortuneNoise(table, noise));
+}
+
+Weighting LafortuneWeighting(
+    const MeasurementTable& table, const NoiseModel& noise,
+    const std::function<std::vector<double>(int channel)>& channel_values) {
+  return Weighting(table, LafortuneNoise(table, noise), channel_values);
 }
 
 std::vector<int> LafortuneCandidateLobes(const LafortuneMipOptions& options) {
@@ -86,95 +101,6 @@ LafortuneFitResult FitTexelRows(const MeasurementTable& table,
   const TexelSamples samples =
       CollectSamples(table, weighting, views, rows, &skipped);
   return FitTexelSamples(samples, skipped, table, views, rows, options);
-}
-
-namespace {
-
-// The values of a Lafortune model's table entries as report parameters
-// ("diffuse_r", "lobes[1].N_b"), free, with their fit bounds: a lobe's C
-// within its reach at the lobe's N (models/lafortune.h).
-std::vector<ParameterReport> LafortuneParameterReports(
-    const LafortuneParams& p) {
-  std::vector<ParameterReport> out;
-  auto add = [&](const ParamInfo& info, const std::string& prefix,
-                 const glm::dvec3& field, const glm::dvec3* n) {
-    for (int c = 0; c < 3; ++c) {
-      ParameterReport r;
-      r.name = prefix + info.name + ChannelSuffix(c);
-      r.value = field[c];
-      r.free = true;
-      const bool c_entry = n != nullptr && &info != &kLafortuneN;
-      r.upper = c_entry ? LafortuneLobeReach((*n)[c]) : info.fit_hi;
-      r.lower = c_entry ? -r.upper : info.fit_lo;
-      r.at_bound = OnFitBound(r.value, r.lower, r.upper);
-      r.at_search_limit = r.at_bound && !info.physical;
-      out.push_back(r);
-    }
-  };
-  add(kLafortuneDiffuse, "", p.diffuse, nullptr);
-  for (size_t k = 0; k < p.lobes.size(); ++k) {
-    const std::string prefix = "lobes[" + std::to_string(k) + "].";
-    VisitParamsConst(p.lobes[k],
-                     [&](const ParamInfo& info, const glm::dvec3& field) {
-                       add(info, prefix, field, &p.lobes[k].n);
-                     });
-  }
-  return out;
-}
-
-}  // namespace
-
-LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
-                                     const LafortuneMipOptions& options) {
-  RequireWeightedRows(table);
-  CountNotReflection(table, "lafortune");
-  const ViewIndex views(table);
-  std::vector<size_t> rows(table.rows.size());
-  for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
-  const Weighting weighting = LafortuneWeighting(table, options.noise);
-  int skipped = 0;
-  // Without a lookup table (and without the views' coverage, alpha) the
-  // fit needs no views: collected under one, it holds no per-view arrays
-  // (T, alpha and their copies; a table of random directions has a view
-  // a row).
-  const bool one_view = !options.fit.lookup_table && !table.has_alpha;
-  const TexelSamples samples =
-      CollectSamples(table, weighting, views, rows, &skipped, one_view);
-  LafortuneFitResult fit =
-      FitTexelSamples(samples, skipped, table, views, rows, options);
-  fit.report.parameters = LafortuneParameterReports(fit.params.params);
-  if (fit.report.usable) {
-    // The lobes' standard deviations at the table's gauge, with T free at
-    // the views the fit gave an entry of their own.
-    std::vector<bool> own(samples.views.size(), false);
-    if (fit.report.lut_views_fitted > 0) {
-      own = LafortuneOwnedViews(samples, options.fit.min_lut_samples);
-    }
-    ReportLafortuneStddev(samples, fit.params, own, weighting.LevelKnown(),
-                          &fit.report);
-  }
-  // The cost is that of the table's values (sigma scales with the value's
-  // conversion to rho, lafortune_samples.h), over the samples merged per
-  // light and view; rms and relative_rms are of the rows, in the table's
-  // quantity (LafortuneErrors). The level
-  // estimate counts the lobes' entries as free, not the lookup table's.
-  ReportWeighting(weighting, &fit.report);
-  fit.report.minimised += std::string(" of the table's values (") +
-                          QuantityName(table.quantity) +
-                          "), over merged samples";
-  // A lookup table of T = 1 and alpha = 1 at every view (a fit without
-  // one, or one the data left at 1) is no table: the model is the same
-  // without it (T(v) = 1, models/lafortune.h), and written it would hold
-  // every distinct view of the table (10^7 for 10^7 rows of random
-  // directions: gigabytes of JSON).
-  const ViewTable& lut = fit.params.lut;
-  const bool identity =
-      std::all_of(lut.color.begin(), lut.color.end(),
-                  [](const glm::dvec3& t) { return t == glm::dvec3(1.0); }) &&
-      std::all_of(lut.alpha.begin(), lut.alpha.end(),
-                  [](double a) { return a == 1.0; });
-  if (identity) fit.params.lut = ViewTable();
-  return fit;
 }
 
 std::vector<std::vector<const LafortuneModel*>> LafortuneChildren(

@@ -56,6 +56,10 @@ struct LafortuneMipResult {
 // solve weighs both alike.
 Weighting LafortuneWeighting(const MeasurementTable& table,
                              const NoiseModel& noise);
+// The same for a table read row by row (Weighting's channel_values).
+Weighting LafortuneWeighting(
+    const MeasurementTable& table, const NoiseModel& noise,
+    const std::function<std::vector<double>(int channel)>& channel_values);
 
 // One texel (or a whole table): the fit of the given rows with
 // options.fit, or with options.tolerance > 0 the smallest K in 0..3 whose
@@ -110,6 +114,26 @@ void RunTexelJobs(size_t jobs, int threads,
 // there are none.
 LafortuneFitResult FitLafortuneTable(const MeasurementTable& table,
                                      const LafortuneMipOptions& options);
+
+// The rows of a table, passed over as many times as a fit needs.
+struct TableRowPasses {
+  // The columns, metadata and source (its rows, if any, are not read).
+  const MeasurementTable* table = nullptr;
+  // Calls row(r) for each row, in the same order on every call (a file
+  // read again each time).
+  std::function<void(const std::function<void(const TableRow&)>& row)> each;
+};
+
+// FitLafortuneTable over rows that are not held: the samples are collected
+// in one pass (merged per light and view as they come), the errors over
+// the rows taken in another once the samples are released, so that a
+// table of 10^7 rows needs the samples' memory (about 110 bytes a
+// distinct light and view), not the table's besides. One pass more per
+// candidate with options.tolerance > 0, and three for the default floor
+// of relative noise (each channel's median). FitLafortuneTable is this
+// over the table's rows: the same fit, bit for bit.
+LafortuneFitResult FitLafortuneRows(const TableRowPasses& rows,
+                                    const LafortuneMipOptions& options);
 
 // Throws InputError for a table without s,t columns or a transmittance
 // table. Level 0 is (max s + 1) x (max t + 1); a level of odd size pools

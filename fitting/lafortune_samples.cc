@@ -13,62 +13,23 @@
 namespace clothfit {
 namespace {
 
-long long Round(double x) { return std::llround(x * 1e9); }
-
-using Key = std::array<long long, 6>;
-
-// FNV-1a over the key's words, then the finaliser of MurmurHash3's
-// 64-bit mix, so that the low bits the table's mask keeps depend on every
-// bit of every word (linear probing degrades with clustered slots).
-size_t HashKey(const Key& k) {
-  uint64_t h = 1469598103934665603ULL;
-  for (long long v : k) h = (h ^ static_cast<uint64_t>(v)) * 1099511628211ULL;
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdULL;
-  h ^= h >> 33;
-  h *= 0xc4ceb9fe1a85ec53ULL;
-  h ^= h >> 33;
-  return static_cast<size_t>(h);
-}
-
 // The id of each of n items in order of first appearance of its key
-// (key_of(i)), and the number of distinct keys. An open-addressing table
-// of item numbers (4 bytes a slot, at most half full) whose keys are
-// recomputed on each probe: a node-based hash map of the keys took 72
-// bytes an entry, 2.4 GB for the three indices of 10^7 rows.
+// (key_of(i)), and the number of distinct keys.
 template <typename KeyOf>
-int FirstAppearanceIds(size_t n, const KeyOf& key_of, std::vector<int>* ids) {
-  size_t capacity = 16;
-  while (capacity < 2 * n) capacity *= 2;
-  std::vector<int32_t> slots(capacity, -1);
+int FirstAppearance(size_t n, const KeyOf& key_of, std::vector<int>* ids) {
+  std::vector<int32_t> first;  // the first item of each id
+  const auto key_of_id = [&](int32_t id) {
+    return key_of(static_cast<size_t>(first[id]));
+  };
+  FirstAppearanceIds index;
+  index.Reserve(n);
   ids->resize(n);
-  int distinct = 0;
   for (size_t i = 0; i < n; ++i) {
-    const Key key = key_of(i);
-    size_t slot = HashKey(key) & (capacity - 1);
-    while (slots[slot] >= 0 &&
-           key_of(static_cast<size_t>(slots[slot])) != key) {
-      slot = (slot + 1) & (capacity - 1);
-    }
-    if (slots[slot] < 0) {
-      slots[slot] = static_cast<int32_t>(i);
-      (*ids)[i] = distinct++;
-    } else {
-      (*ids)[i] = (*ids)[static_cast<size_t>(slots[slot])];
-    }
+    bool added = false;
+    (*ids)[i] = index.Id(key_of(i), key_of_id, &added);
+    if (added) first.push_back(static_cast<int32_t>(i));
   }
-  return distinct;
-}
-
-Key ViewKey(const TableRow& row) {
-  return {Round(row.wo.x), Round(row.wo.y), Round(row.wo.z), 0, 0, 0};
-}
-Key LightKey(const TableRow& row) {
-  return {Round(row.wi.x), Round(row.wi.y), Round(row.wi.z), 0, 0, 0};
-}
-Key PairKey(const TableRow& row) {
-  return {Round(row.wo.x), Round(row.wo.y), Round(row.wo.z),
-          Round(row.wi.x), Round(row.wi.y), Round(row.wi.z)};
+  return index.size();
 }
 
 }  // namespace
@@ -78,14 +39,17 @@ ViewIndex::ViewIndex(const MeasurementTable& table) {
   if (rows.size() > static_cast<size_t>(INT32_MAX)) {
     throw InputError(table.source + ": more than 2^31 rows");
   }
-  const int views = FirstAppearanceIds(
-      rows.size(), [&](size_t i) { return ViewKey(rows[i]); }, &row_view_);
+  const int views = FirstAppearance(
+      rows.size(), [&](size_t i) { return DirectionKeyOf(rows[i].wo); },
+      &row_view_);
   views_.resize(static_cast<size_t>(views));
   for (size_t i = rows.size(); i-- > 0;) views_[row_view_[i]] = rows[i].wo;
-  pairs_ = FirstAppearanceIds(
-      rows.size(), [&](size_t i) { return PairKey(rows[i]); }, &row_pair_);
-  lights_ = FirstAppearanceIds(
-      rows.size(), [&](size_t i) { return LightKey(rows[i]); }, &row_light_);
+  pairs_ = FirstAppearance(
+      rows.size(), [&](size_t i) { return PairKeyOf(rows[i].wo, rows[i].wi); },
+      &row_pair_);
+  lights_ = FirstAppearance(
+      rows.size(), [&](size_t i) { return DirectionKeyOf(rows[i].wi); },
+      &row_light_);
 }
 
 SampleCollector::SampleCollector(const MeasurementTable& table,
@@ -108,6 +72,12 @@ SampleCollector::SampleCollector(const MeasurementTable& table,
   }
 }
 
+SampleCollector::SampleCollector(const MeasurementTable& table, bool one_view)
+    : SampleCollector(table, ViewIndex(), one_view) {
+  if (!one_view) view_ids_ = std::make_unique<ViewIds>();
+  pair_ids_ = std::make_unique<FirstAppearanceIds>();
+}
+
 void SampleCollector::Reserve(size_t samples) {
   s_.l.reserve(samples);
   s_.v.reserve(samples);
@@ -116,7 +86,45 @@ void SampleCollector::Reserve(size_t samples) {
   s_.value.reserve(samples);
   s_.source_line.reserve(samples);
   s_.count_rows.reserve(samples);
+  if (pair_ids_) pair_ids_->Reserve(samples);
   sum_wy_.reserve(samples);
+}
+
+void SampleCollector::Add(const TableRow& row, const Weighting& weighting) {
+  int view = 0;
+  if (view_ids_) {  // every row's view, as ViewIndex
+    view = view_ids_->Id(row.wo);
+    if (alpha_sum_.size() < view_ids_->views().size()) {
+      alpha_sum_.push_back(0.0);
+      alpha_count_.push_back(0);
+    }
+  }
+  Add(row, view, -1, weighting);
+}
+
+int SampleCollector::SampleOf(const TableRow& row, int view, int pair) {
+  int k = -1;
+  bool added = false;
+  if (pair >= 0) {
+    k = slot_[pair];
+    added = k < 0;
+    if (added) k = slot_[pair] = static_cast<int>(s_.l.size());
+  } else {
+    k = pair_ids_->Id(
+        PairKeyOf(row.wo, row.wi),
+        [this](int32_t id) { return PairKeyOf(s_.v[id], s_.l[id]); }, &added);
+  }
+  if (added) {
+    s_.l.push_back(row.wi);
+    s_.v.push_back(row.wo);
+    s_.view.push_back(view);
+    s_.weight.push_back(glm::dvec3(0.0));
+    s_.value.push_back(glm::dvec3(0.0));
+    s_.source_line.push_back(row.source_line);
+    s_.count_rows.push_back(0);
+    sum_wy_.push_back(glm::dvec3(0.0));
+  }
+  return k;
 }
 
 void SampleCollector::Add(const TableRow& row, int view, int pair,
@@ -131,23 +139,12 @@ void SampleCollector::Add(const TableRow& row, int view, int pair,
   // Values as rho; sigma likewise (rho = f wi.z).
   const double to_rho = CosineWeightedFactor(quantity_, row.wi.z);
   const glm::dvec3 w = weighting.InverseVariance(row, to_rho);
-  int& k = slot_[pair];
-  if (k < 0) {
-    k = static_cast<int>(s_.l.size());
-    s_.l.push_back(row.wi);
-    s_.v.push_back(row.wo);
-    s_.view.push_back(view);
-    s_.weight.push_back(glm::dvec3(0.0));
-    s_.value.push_back(glm::dvec3(0.0));
-    s_.source_line.push_back(row.source_line);
-    sum_wy_.push_back(glm::dvec3(0.0));
-  }
+  const int k = SampleOf(row, view, pair);
   s_.weight[k] += w;
   sum_wy_[k] += w * row.value * to_rho;
   s_.value[k] += row.value * to_rho;  // plain sum, for zero weights
   const glm::dvec3 rho = row.value * to_rho;
   s_.largest_row_value = std::max({s_.largest_row_value, rho.x, rho.y, rho.z});
-  s_.count_rows.resize(s_.l.size(), 0);
   ++s_.count_rows[k];
   alpha_sum_[view] += row.alpha;
   ++alpha_count_[view];
@@ -155,6 +152,7 @@ void SampleCollector::Add(const TableRow& row, int view, int pair,
 
 TexelSamples SampleCollector::Finish(int* skipped) {
   TexelSamples s = std::move(s_);
+  if (view_ids_) s.views = view_ids_->TakeViews();
   for (size_t k = 0; k < s.l.size(); ++k) {
     for (int c = 0; c < 3; ++c) {
       s.value[k][c] = s.weight[k][c] > 0.0 ? sum_wy_[k][c] / s.weight[k][c]
@@ -193,21 +191,30 @@ TexelSamples CollectSamples(const MeasurementTable& table,
 LafortuneErrorSums::LafortuneErrorSums(const LafortuneModel& model,
                                        const MeasurementTable& table,
                                        const ViewIndex& views)
+    : LafortuneErrorSums(
+          model, table, model.lut.views.size() == views.views().size(), true) {}
+
+LafortuneErrorSums::LafortuneErrorSums(const LafortuneModel& model,
+                                       const MeasurementTable& table,
+                                       bool same_views, bool view_sums)
     : model_(model),
       quantity_(table.quantity),
-      same_views_(model.lut.views.size() == views.views().size()),
-      frame_(MakeTexelFrame(model.normal)),
-      view_d_(views.views().size(), glm::dvec3(0.0)),
-      view_y_(views.views().size(), glm::dvec3(0.0)),
-      view_n_(views.views().size(), 0) {}
+      same_views_(same_views),
+      view_sums_(view_sums),
+      frame_(MakeTexelFrame(model.normal)) {}
 
 void LafortuneErrorSums::Add(const TableRow& row, int view) {
   if (!IsReflectionRow(row)) return;
   // In the table's quantity, as every other fit reports (the model is
   // rho, f = rho / wi.z).
   const glm::dvec3& y = row.value;
-  const glm::dvec3 t = same_views_ ? model_.lut.color[view]
-                                   : LookupView(model_.lut, row.wo).color;
+  // T(v): the view's entry, interpolated where the table is not the rows'
+  // (or has no entry for the view: a file that changed between passes),
+  // 1 without a table.
+  const bool own_entry =
+      same_views_ && static_cast<size_t>(view) < model_.lut.color.size();
+  const glm::dvec3 t =
+      own_entry ? model_.lut.color[view] : LookupView(model_.lut, row.wo).color;
   const glm::dvec3 d =
       t *
           LafortuneF1(model_.params, ToTexelFrame(frame_, row.wi),
@@ -217,6 +224,12 @@ void LafortuneErrorSums::Add(const TableRow& row, int view) {
   se_ += glm::dot(d, d);
   ss_ += glm::dot(y, y);
   ++n_;
+  if (!view_sums_) return;
+  if (static_cast<size_t>(view) >= view_n_.size()) {
+    view_d_.resize(view + 1, glm::dvec3(0.0));
+    view_y_.resize(view + 1, glm::dvec3(0.0));
+    view_n_.resize(view + 1, 0);
+  }
   view_d_[view] += d;
   view_y_[view] += y;
   ++view_n_[view];
@@ -226,7 +239,7 @@ void LafortuneErrorSums::Finish(double* rms, double* relative_rms,
                                 double* view_relative_rms) const {
   *rms = n_ ? std::sqrt(se_ / (3.0 * n_)) : 0.0;
   *relative_rms = ss_ > 0.0 ? std::sqrt(se_ / ss_) : 0.0;
-  if (view_relative_rms) {
+  if (view_relative_rms && view_sums_) {
     double vse = 0.0, vss = 0.0;
     for (size_t k = 0; k < view_n_.size(); ++k) {
       if (view_n_[k] == 0) continue;

@@ -5,9 +5,11 @@
 // table rows.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "fitting/direction_ids.h"
 #include "fitting/residual_weight.h"
 #include "io/table.h"
 #include "models/lafortune.h"
@@ -38,6 +40,7 @@ struct TexelSamples {
 // by all texels so that their lookup tables line up.
 class ViewIndex {
  public:
+  ViewIndex() = default;  // of no rows
   explicit ViewIndex(const MeasurementTable& table);
   const std::vector<glm::dvec3>& views() const { return views_; }
   int RowView(size_t row) const { return row_view_[row]; }
@@ -85,13 +88,24 @@ class SampleCollector {
   // per-view arrays: a table of random directions has one view a row).
   SampleCollector(const MeasurementTable& table, const ViewIndex& views,
                   bool one_view = false);
+  // Without an index: the collector tells the rows' views and pairs apart
+  // itself (direction_ids.h), as a ViewIndex of the same rows would, for
+  // rows read one at a time (Add without view and pair). Its pairs' keys
+  // are the samples' own directions: no copy per row.
+  SampleCollector(const MeasurementTable& table, bool one_view);
   // Room for this many samples (at most the rows to be added).
   void Reserve(size_t samples);
   void Add(const TableRow& row, int view, int pair, const Weighting& weighting);
+  // The same without an index.
+  void Add(const TableRow& row, const Weighting& weighting);
   // The samples; *skipped (may be null) the rows that are not reflection.
   TexelSamples Finish(int* skipped);
 
  private:
+  // The sample of the row's pair (`pair` of the index, or -1: found by its
+  // directions), added when new.
+  int SampleOf(const TableRow& row, int view, int pair);
+
   Quantity quantity_;
   bool has_normal_;
   bool one_view_;
@@ -102,6 +116,9 @@ class SampleCollector {
   std::vector<glm::dvec3> sum_wy_;  // per sample: sum w y
   glm::dvec3 normal_sum_{0.0};
   int dropped_ = 0;
+  // Without an index: the views, and the samples' pairs.
+  std::unique_ptr<ViewIds> view_ids_;
+  std::unique_ptr<FirstAppearanceIds> pair_ids_;
 };
 
 // RMS and relative RMS error of a model over table rows, in the table's
@@ -123,6 +140,12 @@ class LafortuneErrorSums {
   // `model` must outlive this; `table`: the rows' quantity.
   LafortuneErrorSums(const LafortuneModel& model, const MeasurementTable& table,
                      const ViewIndex& views);
+  // For views numbered as they come (ViewIds): same_views when the
+  // model's lookup table has the rows' views in the same order (rows take
+  // their view's entry; else it is interpolated); view_sums: whether
+  // Finish gives the views' error (else it leaves it unchanged).
+  LafortuneErrorSums(const LafortuneModel& model, const MeasurementTable& table,
+                     bool same_views, bool view_sums);
   void Add(const TableRow& row, int view);
   void Finish(double* rms, double* relative_rms,
               double* view_relative_rms) const;
@@ -131,6 +154,7 @@ class LafortuneErrorSums {
   const LafortuneModel& model_;
   Quantity quantity_;
   bool same_views_;
+  bool view_sums_;
   TexelFrame frame_;
   double se_ = 0.0, ss_ = 0.0;
   size_t n_ = 0;

@@ -23,6 +23,17 @@ const char* NoiseKindName(NoiseKind kind) {
 }
 
 Weighting::Weighting(const MeasurementTable& table, const NoiseModel& noise)
+    : Weighting(table, noise, [&table](int c) {
+        std::vector<double> values;
+        values.reserve(table.rows.size());
+        for (const TableRow& row : table.rows)
+          values.push_back(std::abs(row.value[c]));
+        return values;
+      }) {}
+
+Weighting::Weighting(
+    const MeasurementTable& table, const NoiseModel& noise,
+    const std::function<std::vector<double>(int channel)>& channel_values)
     : kind_(noise.kind), level_(noise.level) {
   const std::string name = table.source.empty() ? "table" : table.source;
   if (!(noise.level >= 0.0) || !std::isfinite(noise.level)) {
@@ -52,10 +63,7 @@ Weighting::Weighting(const MeasurementTable& table, const NoiseModel& noise)
   // spans decades (a thread's highlight is 1,000x its median), so a floor
   // tied to the largest value would weigh most rows alike.
   for (int c = 0; c < 3; ++c) {
-    std::vector<double> values;
-    values.reserve(table.rows.size());
-    for (const TableRow& row : table.rows)
-      values.push_back(std::abs(row.value[c]));
+    std::vector<double> values = channel_values(c);
     double typical = 0.0;
     if (!values.empty()) {
       auto middle = values.begin() + values.size() / 2;

@@ -22,8 +22,10 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <string>
+#include <vector>
 
 #include "io/table.h"
 
@@ -51,6 +53,12 @@ const char* NoiseKindName(NoiseKind kind);
 class Weighting {
  public:
   Weighting(const MeasurementTable& table, const NoiseModel& noise);
+  // The same for a table read row by row: `table` gives the columns (its
+  // rows are not read), and channel_values(c) the |value| of channel c
+  // of every row, called only where the default floor needs them.
+  Weighting(
+      const MeasurementTable& table, const NoiseModel& noise,
+      const std::function<std::vector<double>(int channel)>& channel_values);
 
   // The noise model in effect (never kDefault).
   NoiseKind kind() const { return kind_; }

@@ -6,11 +6,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <glm/geometric.hpp>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "fitting/lafortune_fit.h"
 #include "fitting/lafortune_mip.h"
+#include "fitting/lafortune_samples.h"
+#include "io/input_error.h"
 #include "io/table.h"
 #include "models/lafortune.h"
 
@@ -161,6 +166,160 @@ TEST(LafortuneLargeTable, ChunkedLobeSolveReachesTheOneBlockSolution) {
                 1e-4 * truth.params.lobes[0].n[c]);
     EXPECT_NEAR(fit.params.params.lobes[0].cz[c], truth.params.lobes[0].cz[c],
                 1e-6);
+  }
+}
+
+// A table with what the collector merges and skips: rows repeating a
+// (light, view) pair with other values, a direction 1e-12 off another (the
+// same to 1e-9), views below the surface, zero weights, per-row coverage
+// and normals.
+MeasurementTable MixedTable() {
+  MeasurementTable t = RandomTable(Truth(), 300, 13);
+  t.has_alpha = true;
+  t.has_normal = true;
+  t.has_weight = true;
+  const size_t n = t.rows.size();
+  for (size_t i = 0; i < n; ++i) {
+    TableRow& row = t.rows[i];
+    row.alpha = 0.5 + 0.5 * static_cast<double>(i % 7) / 7.0;
+    row.normal = glm::normalize(glm::dvec3(0.01 * (i % 5), 0.02, 1.0));
+    row.weight = i % 11 == 0 ? 0.0 : 1.0;
+    if (i % 13 == 0) row.wo.z = -row.wo.z;  // not reflection
+  }
+  for (size_t i = 0; i < 60; ++i) {  // repeats, some 1e-12 off
+    TableRow row = t.rows[3 * i];
+    row.value *= 1.1;
+    if (i % 2 == 0) row.wi.x += 1e-12;
+    row.source_line = static_cast<int>(t.rows.size()) + 2;
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+void ExpectSameSamples(const TexelSamples& a, const TexelSamples& b) {
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.normal, b.normal);
+  EXPECT_EQ(a.views, b.views);
+  EXPECT_EQ(a.view_alpha, b.view_alpha);
+  EXPECT_EQ(a.largest_row_value, b.largest_row_value);
+  EXPECT_EQ(a.l, b.l);
+  EXPECT_EQ(a.v, b.v);
+  EXPECT_EQ(a.value, b.value);
+  EXPECT_EQ(a.weight, b.weight);
+  EXPECT_EQ(a.view, b.view);
+  EXPECT_EQ(a.count_rows, b.count_rows);
+  EXPECT_EQ(a.source_line, b.source_line);
+}
+
+// Rows added one at a time without an index (views and pairs told apart
+// by the collector) give the samples of the table's ViewIndex, bit for bit.
+TEST(LafortuneLargeTable, CollectorWithoutAnIndexGivesTheIndexedSamples) {
+  const MeasurementTable table = MixedTable();
+  std::vector<size_t> rows(table.rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+  const ViewIndex index(table);
+  ASSERT_LT(index.pairs(), static_cast<int>(table.rows.size()));  // merged
+  for (const NoiseKind kind : {NoiseKind::kAbsolute, NoiseKind::kRelative}) {
+    NoiseModel noise;
+    noise.kind = kind;
+    const Weighting weighting = LafortuneWeighting(table, noise);
+    for (const bool one_view : {false, true}) {
+      SCOPED_TRACE(one_view ? "one view" : "every view");
+      int skipped_indexed = 0, skipped = 0;
+      const TexelSamples indexed = CollectSamples(table, weighting, index, rows,
+                                                  &skipped_indexed, one_view);
+      SampleCollector collector(table, one_view);
+      for (const TableRow& row : table.rows) collector.Add(row, weighting);
+      const TexelSamples samples = collector.Finish(&skipped);
+      EXPECT_EQ(skipped, skipped_indexed);
+      EXPECT_GT(skipped, 0);
+      ExpectSameSamples(samples, indexed);
+    }
+  }
+}
+
+// TableRowPasses over the table's rows.
+TableRowPasses PassesOver(const MeasurementTable& table, int* passes) {
+  TableRowPasses rows;
+  rows.table = &table;
+  rows.each = [&table, passes](const std::function<void(const TableRow&)>& f) {
+    ++*passes;
+    for (const TableRow& row : table.rows) f(row);
+  };
+  return rows;
+}
+
+// The fit of rows passed over (FitLafortuneTable) is the fit of the
+// table's indexed samples (FitTexelRows, as every texel of a map): the same
+// model and errors, with a lookup table and with candidate lobe counts;
+// the passes it takes are those its documentation gives.
+TEST(LafortuneLargeTable, FitOfRowsPassedOverIsTheFitOfTheIndexedRows) {
+  MeasurementTable table = MixedTable();
+  table.has_normal = false;
+  for (TableRow& row : table.rows) row.normal = glm::dvec3(0.0, 0.0, 1.0);
+  std::vector<size_t> rows(table.rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+  const ViewIndex index(table);
+  for (const double tolerance : {0.0, 1e-9}) {
+    SCOPED_TRACE(tolerance);
+    LafortuneMipOptions options;
+    options.fit.lobes = 1;
+    options.tolerance = tolerance;
+    int passes = 0;
+    const LafortuneFitResult streamed =
+        FitLafortuneRows(PassesOver(table, &passes), options);
+    const LafortuneFitResult indexed = FitTexelRows(
+        table, LafortuneWeighting(table, options.noise), index, rows, options);
+    ASSERT_TRUE(streamed.report.usable) << streamed.report.message;
+    // Collecting and the rows' errors; and each of the 4 candidates'
+    // errors (none meets 1e-9).
+    EXPECT_EQ(passes, tolerance > 0.0 ? 6 : 2);
+    EXPECT_EQ(streamed.params.params.lobes.size(),
+              indexed.params.params.lobes.size());
+    EXPECT_EQ(streamed.params.params.diffuse, indexed.params.params.diffuse);
+    for (size_t k = 0; k < indexed.params.params.lobes.size(); ++k) {
+      EXPECT_EQ(streamed.params.params.lobes[k].cz,
+                indexed.params.params.lobes[k].cz);
+      EXPECT_EQ(streamed.params.params.lobes[k].n,
+                indexed.params.params.lobes[k].n);
+    }
+    EXPECT_EQ(streamed.params.lut.color, indexed.params.lut.color);
+    EXPECT_EQ(streamed.report.rms, indexed.report.rms);
+    EXPECT_EQ(streamed.report.relative_rms, indexed.report.relative_rms);
+    EXPECT_EQ(streamed.report.view_relative_rms,
+              indexed.report.view_relative_rms);
+    EXPECT_EQ(streamed.report.rows_not_used, indexed.report.rows_not_used);
+    EXPECT_GT(streamed.report.seconds, 0.0);  // the solves' time, reported
+  }
+  // Relative noise's default floor takes a pass per channel.
+  LafortuneMipOptions relative;
+  relative.fit.lobes = 1;
+  relative.noise.kind = NoiseKind::kRelative;
+  int passes = 0;
+  FitLafortuneRows(PassesOver(table, &passes), relative);
+  EXPECT_EQ(passes, 5);
+}
+
+// A later pass that sees other rows than the first (a file changed while
+// it was read) is refused, not fitted or indexed out of range.
+TEST(LafortuneLargeTable, RowsThatChangeBetweenPassesAreRefused) {
+  MeasurementTable table = RandomTable(Truth(), 500, 17);
+  table.source = "t.csv";
+  int passes = 0;
+  TableRowPasses rows;
+  rows.table = &table;
+  rows.each = [&](const std::function<void(const TableRow&)>& f) {
+    const size_t n = table.rows.size() - (passes++ > 0 ? 1 : 0);
+    for (size_t i = 0; i < n; ++i) f(table.rows[i]);
+  };
+  LafortuneMipOptions options;
+  options.fit.lobes = 1;
+  try {
+    FitLafortuneRows(rows, options);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              "t.csv: changed while it was read (500 rows, then 499)");
   }
 }
 
