@@ -148,6 +148,35 @@ int FitLafortuneRegion(const CommandArgs& args, int argc, char** argv,
 #endif
 }
 
+// One model from a table file read row by row (FitLafortuneRows): the
+// fit holds its samples, not the table. The first pass warns as
+// ReadTableOption does; the later ones read the same file again.
+LafortuneFitResult FitLafortuneFile(const CommandArgs& args,
+                                    const std::string& path,
+                                    const MeasurementTable& header,
+                                    const LafortuneMipOptions& options) {
+  int passes = 0;
+  TableRowPasses rows;
+  rows.table = &header;
+  rows.each = [&](const std::function<void(const TableRow&)>& row) {
+    ReadTableOptions read;
+    read.row_sink = [&row](const MeasurementTable&, const TableRow& r) {
+      row(r);
+    };
+    if (passes++ == 0) {
+      ReadTableOption(args, path, read);
+      return;
+    }
+    read.skip_invalid = args.Has("skip-invalid");
+    progress::Task task("reading " + path + " again", "MB");
+    read.progress = [&task](double done, double total) {
+      task.Update(done / 1e6, total / 1e6);
+    };
+    ReadTable(path, read);
+  };
+  return FitLafortuneRows(rows, options);
+}
+
 }  // namespace
 
 int RunFitLafortune(int argc, char** argv) {
@@ -173,6 +202,9 @@ int RunFitLafortune(int argc, char** argv) {
     return FitLafortuneRegion(args, argc, argv, options, out_path);
   }
   MeasurementTable table;
+  // A table file for one model (no s,t columns), read row by row: its
+  // columns and metadata, and no rows.
+  std::optional<MeasurementTable> header;
   const std::string source = args.Get(args.Has("stack") ? "stack" : "data");
   if (args.Has("stack")) {
 #ifdef CLOTHFIT_LIGHT
@@ -180,11 +212,19 @@ int RunFitLafortune(int argc, char** argv) {
 #else
     table = ReadStackFor(source, PixelRegion(), out_path);
 #endif
-  } else {
+  } else if (!select && RegularFileProblem(source).empty()) {
+    ReadTableOptions read;
+    read.skip_invalid = args.Has("skip-invalid");
+    header = ReadTableHeader(source, read);
+    if (header->has_texels) {
+      header.reset();
+      table = ReadTableOption(args, source);
+    }
+  } else {  // a pipe is read once; --select folds the rows
     table = ReadTableOption(args, source);
   }
 
-  if (!table.has_texels) {  // one model for the whole table
+  if (header || !table.has_texels) {  // one model for the whole table
     if (!text_util::HasExtension(out_path, ".json")) {
       args.Fail(
           "a table without s,t columns gives one model: --out must be "
@@ -211,7 +251,9 @@ int RunFitLafortune(int argc, char** argv) {
       extras.json.emplace_back("selection", SelectionReportJson(chosen.report));
       return FinishFit(args, chosen.fit.params, chosen.fit.report, {}, extras);
     }
-    const LafortuneFitResult fit = FitLafortuneTable(table, options);
+    const LafortuneFitResult fit =
+        header ? FitLafortuneFile(args, source, *header, options)
+               : FitLafortuneTable(table, options);
     WarnNotReflection(fit.report, "lafortune");
     if (options.fit.lookup_table &&
         fit.report.lut_views_fitted < fit.report.lut_views) {

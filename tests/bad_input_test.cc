@@ -170,7 +170,7 @@ std::vector<Command> TableCommands() {
       {"fit", "--model", "cloth", "--preset", "linen_plain", "--data", "BAD",
        "--out", "OUT"},
       {"fit", "--model", "slab", "--data", "BAD", "--out", "OUT"},
-      {"fit", "--model", "lafortune", "--data", "BAD", "--out", "OUT"},
+      {"fit", "--model", "lafortune", "--data", "BAD", "--out", "OUT.json"},
       {"fit", "--model", "holes", "--mask", "net.png", "--data", "BAD", "--out",
        "OUT"},
       {"plot", "--params", "thread.json", "--data", "BAD", "--out", "OUT"},
