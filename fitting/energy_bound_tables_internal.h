@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "fitting/flatten_internal.h"
 #include "models/energy_bound.h"
 #include "models/math.h"
 
@@ -42,8 +43,11 @@ class BoundTablesFunctor {
 
   // With Jets, the held entries of the plan are the values given by
   // SetHeld (the tables in double at the same point), without derivative.
+  // Flattened as the rows' residuals are (fitting/flatten_internal.h): the
+  // tables' quadratures are most of a bounded solve's time, and without it
+  // GCC leaves Eigen's per-lane Jet products as calls.
   template <typename T>
-  bool operator()(const T* const* blocks, T* tables) const {
+  CLOTHFIT_FLATTEN bool operator()(const T* const* blocks, T* tables) const {
     const T s =
         scale_block_ >= 0 ? Max(T(1.0), blocks[scale_block_][0]) : T(1.0);
     const auto rho = evaluator_->BoundRho(blocks);
