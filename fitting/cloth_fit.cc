@@ -378,29 +378,23 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
   }
   ClothFitResult result;
   if (options.energy_bound) {
-    std::vector<double> x, x_within;
-    result = FitClothThrough(table, init, options, nullptr, nullptr, &x);
-    MeasurementTable first_storage;
-    const MeasurementTable& first = FirstFitRows(table, &first_storage);
-    bool of_every_row = true;
-    if (&first != &table) {
-      ClothFitResult within =
-          FitClothThrough(first, init, options, nullptr, nullptr, &x_within);
-      within.report.rows = static_cast<int>(table.rows.size());
-      if (BetterBoundedStart(table, options.solver.noise, within, result)) {
-        result = std::move(within);
-        of_every_row = false;
-        x = x_within;
-      }
-    }
-    SettleEnergyBound<ClothParams>(
+    // The solver's vector of each first fit: the bounded solves start from
+    // the chosen one's.
+    std::vector<double> x_every, x_within;
+    BoundedStart<ClothParams> start = ChooseBoundedStart<ClothParams>(
+        table, options.solver.noise, [&](const MeasurementTable& rows) {
+          return FitClothThrough(rows, init, options, nullptr, nullptr,
+                                 &rows == &table ? &x_every : &x_within);
+        });
+    std::vector<double> x = start.of_every_row ? x_every : x_within;
+    result = SettleEnergyBound<ClothParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ClothParams&,
             const std::vector<double>* search_factor) {
           return FitClothThrough(table, init, options, nullptr, &x, &x, &plan,
                                  search_factor);
         },
-        of_every_row, &result);
+        std::move(start));
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const std::vector<double> factors =

@@ -58,16 +58,48 @@ const MeasurementTable& FirstFitRows(const MeasurementTable& table,
 double BoundedCost(const MeasurementTable& table, const NoiseModel& noise,
                    const ModelParams& bounded);
 
-// Whether `within` (the paper's model fitted to FirstFitRows) is a better
-// start of the bounded model than `every` (fitted to every row): usable,
-// and of the lower BoundedCost once each has its own bound.
+// The start of a bounded fit: the paper's model fitted to some rows, with
+// its bound and the plan of that bound's entries (found once: the azimuth
+// search is most of a bound's cost).
 template <typename P>
-bool BetterBoundedStart(const MeasurementTable& table, const NoiseModel& noise,
-                        const FitResult<P>& within, const FitResult<P>& every) {
-  if (!within.report.usable) return false;
-  if (!every.report.usable) return true;
-  return BoundedCost(table, noise, WithEnergyBound(within.params)) <
-         BoundedCost(table, noise, WithEnergyBound(every.params));
+struct BoundedStart {
+  FitResult<P> fit;
+  bool of_every_row = true;  // else fitted to FirstFitRows
+  std::shared_ptr<const EnergyBound> bound;
+  EnergyBoundPlan plan;
+};
+
+// The better start of the bounded model: the paper's model fitted to every
+// row (fit_rows(table)), or to FirstFitRows where the table has rows
+// beyond them, whichever is usable and of the lower BoundedCost once
+// bounded (the fit of every row where equal). fit_rows(rows) fits the
+// paper's model to `rows`.
+template <typename P>
+BoundedStart<P> ChooseBoundedStart(
+    const MeasurementTable& table, const NoiseModel& noise,
+    const std::function<FitResult<P>(const MeasurementTable&)>& fit_rows) {
+  const auto bounded = [](FitResult<P> fit) {
+    BoundedStart<P> start;
+    start.bound = EnergyBoundOf(fit.params, &start.plan);
+    start.fit = std::move(fit);
+    return start;
+  };
+  const auto cost = [&](const BoundedStart<P>& start) {
+    P p = start.fit.params;
+    p.energy_bound = start.bound;
+    return BoundedCost(table, noise, ModelParams(p));
+  };
+  BoundedStart<P> every = bounded(fit_rows(table));
+  MeasurementTable first_storage;
+  const MeasurementTable& first = FirstFitRows(table, &first_storage);
+  if (&first == &table) return every;
+  FitResult<P> within_fit = fit_rows(first);
+  if (!within_fit.report.usable) return every;
+  within_fit.report.rows = static_cast<int>(table.rows.size());
+  BoundedStart<P> within = bounded(std::move(within_fit));
+  within.of_every_row = false;
+  if (!every.fit.report.usable || cost(within) < cost(every)) return within;
+  return every;
 }
 
 // EnergyBoundFactor at every row (all 1 for a null bound).
@@ -128,35 +160,35 @@ double RelativeFactorChange(const std::vector<double>& g,
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
                        bool settled, FitReport* report);
 
-// The fit of the bounded model from `*fit` (the paper's model fitted to
-// every row of `table`, or to some, `of_every_row` false):
+// The fit of the bounded model from `start` (ChooseBoundedStart):
 // refit(plan, from, search_factor) solves the bounded model, its tables
 // through `plan`, from the parameters `from` and, with search_factor, from
 // the start search too, done through those fixed factors of the rows (the
 // first solve: the first fit's rows may not tell a weak thread's
-// parameters, nor its basin be that of every row). On return *fit holds the
-// last solve with its bound attached (the tables it was solved through), and
-// its report the bound's effect, the iterations of all solves and the furnace
-// check.
+// parameters, nor its basin be that of every row). Returns the last solve
+// with its bound attached (the tables it was solved through), its report
+// the bound's effect, the iterations of all solves and the furnace check.
 template <typename P>
-void SettleEnergyBound(
+FitResult<P> SettleEnergyBound(
     const MeasurementTable& table,
     const std::function<FitResult<P>(const EnergyBoundPlan&, const P&,
                                      const std::vector<double>*)>& refit,
-    bool of_every_row, FitResult<P>* fit) {
-  EnergyBoundPlan plan;
-  std::shared_ptr<const EnergyBound> bound = EnergyBoundOf(fit->params, &plan);
+    BoundedStart<P> start) {
+  FitResult<P> result = std::move(start.fit);
+  FitResult<P>* fit = &result;
+  EnergyBoundPlan plan = std::move(start.plan);
+  std::shared_ptr<const EnergyBound> bound = std::move(start.bound);
   std::vector<double> g = EnergyBoundFactors(table, bound.get());
   // Where the bound lowers no row, the paper's model's fit is the bounded
   // model's.
-  bool settled = of_every_row &&
+  bool settled = start.of_every_row &&
                  RelativeFactorChange(g, std::vector<double>(g.size(), 1.0)) <=
                      kEnergyBoundSettled;
   int refits = 0, iterations = fit->report.iterations;
   const int starts = fit->report.starts;
   const std::string search = fit->report.search;  // the first fit's
   while (!settled && refits < kEnergyBoundRefits) {
-    if (!fit->report.usable) return;
+    if (!fit->report.usable) return result;
     HoldUnusedEntries(table, *EnergyBoundByPlan(fit->params, plan), &plan);
     const P from = fit->params;
     *fit = refit(plan, from, refits == 0 ? &g : nullptr);
@@ -176,6 +208,7 @@ void SettleEnergyBound(
   fit->params.energy_bound = bound;
   ReportEnergyBound(g, refits, settled, &fit->report);
   ReportModelEnergy(ModelParams(fit->params), &fit->report);
+  return result;
 }
 
 }  // namespace clothfit

@@ -154,27 +154,17 @@ ThreadFitResult FitThread(const MeasurementTable& table,
   }
   ThreadFitResult result;
   if (options.energy_bound) {
-    result = FitThreadThrough(table, options, nullptr, nullptr);
-    MeasurementTable first_storage;
-    const MeasurementTable& first = FirstFitRows(table, &first_storage);
-    bool of_every_row = true;
-    if (&first != &table) {
-      ThreadFitResult within =
-          FitThreadThrough(first, options, nullptr, nullptr);
-      within.report.rows = static_cast<int>(table.rows.size());
-      if (BetterBoundedStart(table, options.solver.noise, within, result)) {
-        result = std::move(within);
-        of_every_row = false;
-      }
-    }
-    SettleEnergyBound<ThreadParams>(
+    result = SettleEnergyBound<ThreadParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ThreadParams& from,
             const std::vector<double>* search_factor) {
           return FitThreadThrough(table, options, nullptr, &from, &plan,
                                   search_factor);
         },
-        of_every_row, &result);
+        ChooseBoundedStart<ThreadParams>(
+            table, options.solver.noise, [&](const MeasurementTable& rows) {
+              return FitThreadThrough(rows, options, nullptr, nullptr);
+            }));
   } else {
     // The init's bound held: its factors fixed, and carried by the result.
     const auto bound = given.init ? given.init->energy_bound : nullptr;
