@@ -17,6 +17,12 @@ namespace clothfit {
 struct EnergyCheck {
   double max_albedo = 0.0;              // over directions and channels
   glm::dvec3 direction{0.0, 0.0, 1.0};  // where (surface frame)
+  // A thread or cloth without an energy bound: the light side apart, the
+  // largest integral of f(wi, wo) wo.z over the views and its wi (the
+  // paper's models are not reciprocal; max_albedo is the view side); < 0
+  // for other models and for bounded ones, whose max_albedo covers both.
+  double max_light_albedo = -1.0;
+  glm::dvec3 light_direction{0.0, 0.0, 1.0};
 };
 
 // A Lafortune texel: in closed form (LafortuneViewAlbedo) at
@@ -26,8 +32,8 @@ EnergyCheck LafortuneEnergy(const LafortuneModel& m);
 // Any model by quadrature (36 rings) at FurnaceDirections(8); a thread or
 // cloth with an energy bound (models/bounded.h) on both sides
 // (ModelViewAlbedo and ModelLightAlbedo: the paper's models are not
-// reciprocal), without one on the view side; a Lafortune model by
-// LafortuneEnergy.
+// reciprocal), without one on the view side, with the light side apart
+// (max_light_albedo); a Lafortune model by LafortuneEnergy.
 EnergyCheck ModelEnergy(const ModelParams& p);
 
 // The directional albedo a(wo) of any model (models/albedo.h), per
@@ -52,7 +58,8 @@ int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
                              std::vector<glm::dvec3>* t);
 
 // Records ModelEnergy of a fitted model in the report (max_albedo,
-// max_albedo_at) unless the fit did (a Lafortune texel or a cloth fit).
+// max_albedo_at, and the light side's) unless the fit did (a Lafortune
+// texel or a cloth fit).
 // A thread is reported, not scaled: the published microcylinder thread
 // exceeds 1 at grazing views along its axis by itself (docs/fitting.md).
 void ReportModelEnergy(const ModelParams& fitted, FitReport* report);

@@ -143,6 +143,10 @@ std::string FitReportJson(const FitReport& r) {
     energy["max_albedo"] = r.max_albedo;
     energy["at"] = r.max_albedo_at;
     energy["scaled_by"] = r.energy_scale;
+    if (r.max_light_albedo >= 0.0) {
+      energy["light_side_max_albedo"] = r.max_light_albedo;
+      energy["light_side_at"] = r.max_light_albedo_at;
+    }
     if (!r.energy_bound.empty()) energy["bound"] = r.energy_bound;
     j["energy"] = energy;
   }
@@ -243,6 +247,15 @@ std::string FitReportText(const FitReport& r,
       out << ": above 1, the model does not conserve energy there";
     }
     out << "\n";
+    if (r.max_light_albedo >= 0.0) {
+      // Not reciprocal: what a surface lit from wi reflects over all views.
+      out << "energy, light side: largest " << r.max_light_albedo_at;
+      if (r.max_light_albedo > 1.0) {
+        out << ": above 1, the paper's model reflects more than it receives "
+               "under light from there (--energy-bound bounds both sides)";
+      }
+      out << "\n";
+    }
     if (!r.energy_bound.empty())
       out << "energy bound: " << r.energy_bound << "\n";
   }

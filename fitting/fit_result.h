@@ -126,6 +126,12 @@ struct FitReport {
   // the fit not converged.
   double max_albedo = -1.0;
   std::string max_albedo_at;  // DescribeEnergy
+  // A thread or cloth fit without an energy bound: the light side, the
+  // largest integral of f(wi, wo) wo.z over the views (EnergyCheck; of
+  // what was written), which the paper's models do not keep below 1 at
+  // grazing light; < 0: not checked apart (bounded, or another model).
+  double max_light_albedo = -1.0;
+  std::string max_light_albedo_at;
   double energy_scale = 1.0;
   // A thread or cloth fit of the bounded model (fitting/
   // energy_bound_fit_internal.h): what the bound did to the table's rows

@@ -171,13 +171,27 @@ TEST(ModelEnergy, BothSidesAreCheckedAndTheBoundedModelsConserveEnergy) {
   EXPECT_LT(view, 1.0);
   const glm::dvec3 grazing = ModelLightAlbedo(cloth, Direction(85, 0), q);
   EXPECT_GT(std::max({grazing.x, grazing.y, grazing.z}), 1.0);
-  // Without a bound the check is of the view side, as before.
-  EXPECT_NEAR(ModelEnergy(cloth).max_albedo, view, 1e-12);
+  // Without a bound the check is of the view side, as before, and the
+  // light side is reported apart: above 1 at grazing light.
+  const EnergyCheck unbounded = ModelEnergy(cloth);
+  EXPECT_NEAR(unbounded.max_albedo, view, 1e-12);
+  double light = 0.0;
+  for (const glm::dvec3& d : FurnaceDirections(8)) {
+    const glm::dvec3 a = ModelLightAlbedo(cloth, d, q);
+    light = std::max({light, a.x, a.y, a.z});
+  }
+  EXPECT_NEAR(unbounded.max_light_albedo, light, 1e-12);
+  EXPECT_GT(unbounded.max_light_albedo, 1.0);
+  EXPECT_GT(unbounded.light_direction.z, 0.0);
+  EXPECT_LT(unbounded.light_direction.z, std::cos(Radians(80.0)));
   const ThreadParams thread = cloth.threads[0].params;
   EXPECT_GT(ModelEnergy(thread).max_albedo, 1.0);
+  EXPECT_GE(ModelEnergy(thread).max_light_albedo, 0.0);
   for (const ModelParams& paper : {ModelParams(cloth), ModelParams(thread)}) {
     const ModelParams bounded = WithEnergyBound(paper);
     EXPECT_LE(ModelEnergy(bounded).max_albedo, 1.0) << ModelName(paper);
+    // Both sides are in max_albedo: nothing apart.
+    EXPECT_LT(ModelEnergy(bounded).max_light_albedo, 0.0) << ModelName(paper);
     const glm::dvec3 side = ModelLightAlbedo(bounded, Direction(85, 0), q);
     EXPECT_LE(std::max({side.x, side.y, side.z}), 1.0) << ModelName(paper);
     // Where the paper's model conserves energy, the bounded one is it.
@@ -375,6 +389,13 @@ TEST(ClothEnergy, BrightFitIsScaledToAlbedoOneAndSaysSo) {
     const double written = ModelEnergy(fit.params).max_albedo;
     EXPECT_NEAR(fit.report.max_albedo, truth_albedo * brightness,
                 1e-6 * brightness);
+    // The light side of what was written (scaled with it), and said so.
+    const double light = ModelEnergy(fit.params).max_light_albedo;
+    EXPECT_GT(light, 1.0);
+    EXPECT_NEAR(fit.report.max_light_albedo, light, 1e-9 * light);
+    EXPECT_NE(FitReportText(fit.report, {})
+                  .find("energy, light side: largest directional albedo"),
+              std::string::npos);
     EXPECT_NEAR(fit.report.relative_rms, RelativeRms(fit.params, table), 1e-9);
     if (brightness == 1.0) {
       EXPECT_TRUE(fit.report.converged) << fit.report.message;
