@@ -49,10 +49,6 @@ std::vector<ParameterReport> LafortuneParameterReports(
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 // rms and relative_rms of `model` over the rows (LafortuneErrors), and its
 // view_relative_rms with view_sums. `same_views`: the model's lookup table
 // has the rows' views in order of first appearance. `rows_expected`: the
