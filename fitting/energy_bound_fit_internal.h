@@ -89,17 +89,18 @@ BoundedStart<P> ChooseBoundedStart(
     p.energy_bound = start.bound;
     return BoundedCost(table, noise, ModelParams(p));
   };
-  BoundedStart<P> every = bounded(fit_rows(table));
+  FitResult<P> every_fit = fit_rows(table);
   MeasurementTable first_storage;
   const MeasurementTable& first = FirstFitRows(table, &first_storage);
-  if (&first == &table) return every;
+  if (&first == &table) return bounded(std::move(every_fit));
   FitResult<P> within_fit = fit_rows(first);
-  if (!within_fit.report.usable) return every;
+  if (!within_fit.report.usable) return bounded(std::move(every_fit));
   within_fit.report.rows = static_cast<int>(table.rows.size());
   BoundedStart<P> within = bounded(std::move(within_fit));
   within.of_every_row = false;
-  if (!every.fit.report.usable || cost(within) < cost(every)) return within;
-  return every;
+  if (!every_fit.report.usable) return within;  // its bound not searched
+  BoundedStart<P> every = bounded(std::move(every_fit));
+  return cost(within) < cost(every) ? within : every;
 }
 
 // EnergyBoundFactor at every row (all 1 for a null bound).
