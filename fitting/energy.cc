@@ -60,18 +60,23 @@ EnergyCheck ModelEnergy(const ModelParams& params) {
   const auto* t = std::get_if<ThreadParams>(&params);
   const auto* c = std::get_if<ClothParams>(&params);
   const bool both = (t && t->energy_bound) || (c && c->energy_bound);
-  EnergyCheck light;  // of a thread or cloth without a bound
-  light.max_albedo = -1.0;
   for (const glm::dvec3& d : FurnaceDirections(8)) {
     Consider(ModelViewAlbedo(params, d, q), d, &out);
-    if (both) {
-      Consider(ModelLightAlbedo(params, d, q), d, &out);
-    } else if (t || c) {
-      Consider(ModelLightAlbedo(params, d, q), d, &light);
-    }
+    if (both) Consider(ModelLightAlbedo(params, d, q), d, &out);
   }
-  out.max_light_albedo = light.max_albedo;
-  out.light_direction = light.direction;
+  return out;
+}
+
+EnergyCheck ModelLightSideEnergy(const ModelParams& params) {
+  EnergyCheck out;
+  out.max_albedo = -1.0;
+  const auto* t = std::get_if<ThreadParams>(&params);
+  const auto* c = std::get_if<ClothParams>(&params);
+  if (!(t && !t->energy_bound) && !(c && !c->energy_bound)) return out;
+  const HemisphereQuadrature q = MakeHemisphereQuadrature(36);
+  for (const glm::dvec3& d : FurnaceDirections(8)) {
+    Consider(ModelLightAlbedo(params, d, q), d, &out);
+  }
   return out;
 }
 
@@ -126,15 +131,15 @@ int BoundLookupTableByEnergy(const LafortuneParams& p, const glm::dvec3& normal,
 
 namespace {
 
-// The report's fields of a check; `scale`: the factor the fit's model was
-// then scaled by.
-void RecordEnergy(const EnergyCheck& e, double scale, FitReport* report) {
+// The report's fields of the fit's model's checks (ModelEnergy and
+// ModelLightSideEnergy); `scale`: the factor that model was then scaled
+// by, which scales the light side written too.
+void RecordEnergy(const EnergyCheck& e, EnergyCheck light, double scale,
+                  FitReport* report) {
   report->max_albedo = e.max_albedo;
   report->max_albedo_at = DescribeEnergy(e);
-  if (e.max_light_albedo >= 0.0) {
-    EnergyCheck light;
-    light.max_albedo = e.max_light_albedo * scale;
-    light.direction = e.light_direction;
+  if (light.max_albedo >= 0.0) {
+    light.max_albedo *= scale;
     report->max_light_albedo = light.max_albedo;
     report->max_light_albedo_at = DescribeEnergy(light);
   }
@@ -144,7 +149,7 @@ void RecordEnergy(const EnergyCheck& e, double scale, FitReport* report) {
 
 void ReportModelEnergy(const ModelParams& fitted, FitReport* report) {
   if (report->max_albedo >= 0.0) return;
-  RecordEnergy(ModelEnergy(fitted), 1.0, report);
+  RecordEnergy(ModelEnergy(fitted), ModelLightSideEnergy(fitted), 1.0, report);
 }
 
 double ConserveEnergyByScale(const ModelParams& fitted,
@@ -154,7 +159,8 @@ double ConserveEnergyByScale(const ModelParams& fitted,
   const bool conserves = !(e.max_albedo > 1.0) || !std::isfinite(e.max_albedo);
   // The model is linear in its factor: what is written has s times the
   // fit's light-side albedo too.
-  RecordEnergy(e, conserves ? 1.0 : 1.0 / e.max_albedo, report);
+  RecordEnergy(e, ModelLightSideEnergy(fitted),
+               conserves ? 1.0 : 1.0 / e.max_albedo, report);
   if (conserves) return 1.0;
   const double s = 1.0 / e.max_albedo;
   *scale *= s;

@@ -17,12 +17,6 @@ namespace clothfit {
 struct EnergyCheck {
   double max_albedo = 0.0;              // over directions and channels
   glm::dvec3 direction{0.0, 0.0, 1.0};  // where (surface frame)
-  // A thread or cloth without an energy bound: the light side apart, the
-  // largest integral of f(wi, wo) wo.z over the views and its wi (the
-  // paper's models are not reciprocal; max_albedo is the view side); < 0
-  // for other models and for bounded ones, whose max_albedo covers both.
-  double max_light_albedo = -1.0;
-  glm::dvec3 light_direction{0.0, 0.0, 1.0};
 };
 
 // A Lafortune texel: in closed form (LafortuneViewAlbedo) at
@@ -32,9 +26,15 @@ EnergyCheck LafortuneEnergy(const LafortuneModel& m);
 // Any model by quadrature (36 rings) at FurnaceDirections(8); a thread or
 // cloth with an energy bound (models/bounded.h) on both sides
 // (ModelViewAlbedo and ModelLightAlbedo: the paper's models are not
-// reciprocal), without one on the view side, with the light side apart
-// (max_light_albedo); a Lafortune model by LafortuneEnergy.
+// reciprocal), without one on the view side; a Lafortune model by
+// LafortuneEnergy.
 EnergyCheck ModelEnergy(const ModelParams& p);
+
+// The light side of a thread or cloth without an energy bound, which
+// ModelEnergy leaves out: the largest integral of f(wi, wo) wo.z over the
+// views (ModelLightAlbedo) at FurnaceDirections(8) and its wi. max_albedo
+// < 0 for other models and bounded ones (ModelEnergy covers both sides).
+EnergyCheck ModelLightSideEnergy(const ModelParams& p);
 
 // The directional albedo a(wo) of any model (models/albedo.h), per
 // channel: a Lafortune texel by LafortuneViewAlbedo, any other model by
