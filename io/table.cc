@@ -85,6 +85,40 @@ void MeasurementTable::SetMeta(const std::string& key,
   if (!replaced) metadata.emplace_back(wanted, value);
 }
 
+namespace {
+
+// Hands each line of a piece of a file that ends in it to the parser
+// (without its '\n'; a line begun in an earlier piece is gathered in
+// *pending), calling after_line() after each, and keeps the piece's
+// unfinished last line in *pending.
+template <typename AfterLine>
+void FeedLines(std::string_view chunk, std::string* pending,
+               TableParser* parser, const AfterLine& after_line) {
+  size_t start = 0;
+  while (true) {
+    const size_t end = chunk.find('\n', start);
+    if (end == std::string_view::npos) break;
+    if (pending->empty()) {
+      parser->Line(chunk.substr(start, end - start));
+    } else {
+      pending->append(chunk.substr(start, end - start));
+      parser->Line(*pending);
+      pending->clear();
+    }
+    after_line();
+    start = end + 1;
+  }
+  pending->append(chunk.substr(start));
+  parser->CheckLineLength(pending->size());
+}
+
+void FeedLines(std::string_view chunk, std::string* pending,
+               TableParser* parser) {
+  FeedLines(chunk, pending, parser, [] {});
+}
+
+}  // namespace
+
 ReadTableResult ReadTable(const std::string& path,
                           const ReadTableOptions& options) {
   // Piece by piece: the file's text is never held whole (a 1 GB table
@@ -103,21 +137,7 @@ ReadTableResult ReadTable(const std::string& path,
       options.progress(static_cast<double>(bytes_read),
                        static_cast<double>(file_bytes));
     }
-    size_t start = 0;
-    while (true) {
-      const size_t end = chunk.find('\n', start);
-      if (end == std::string_view::npos) break;
-      if (pending.empty()) {
-        parser.Line(chunk.substr(start, end - start));
-      } else {
-        pending.append(chunk.substr(start, end - start));
-        parser.Line(pending);
-        pending.clear();
-      }
-      start = end + 1;
-    }
-    pending.append(chunk.substr(start));
-    parser.CheckLineLength(pending.size());
+    FeedLines(chunk, &pending, &parser);
     if (!reserved && parser.rows() > 0) {
       reserved = true;
       const double per_byte = static_cast<double>(parser.rows()) / bytes_read;
@@ -135,18 +155,9 @@ MeasurementTable ReadTableHeader(const std::string& path,
   std::string pending;
   try {
     ReadFileInChunks(path, [&](std::string_view chunk) {
-      size_t start = 0;
-      while (true) {
-        const size_t end = chunk.find('\n', start);
-        if (end == std::string_view::npos) break;
-        pending.append(chunk.substr(start, end - start));
-        parser.Line(pending);
-        pending.clear();
+      FeedLines(chunk, &pending, &parser, [&] {
         if (parser.HeaderRead()) throw HeaderDone();
-        start = end + 1;
-      }
-      pending.append(chunk.substr(start));
-      parser.CheckLineLength(pending.size());
+      });
     });
   } catch (const HeaderDone&) {
     return parser.table();
