@@ -156,14 +156,15 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
 // paper's model), or (`plan`) of the bounded model with its tables through
 // that plan: from the start search, from the solver vector `*refit_x`
 // alone, or from both when `search_factor` is given (the rows' factors the
-// search sees). The solver vector of the result goes to `*x_out` (when not
-// null).
+// search sees); a fitted scale at most scale_cap. The solver vector of the
+// result goes to `*x_out` (when not null).
 ClothFitResult FitClothThrough(
     const MeasurementTable& table, const ClothParams& init,
     const ClothFitOptions& options, const std::vector<double>* bound_factor,
     const std::vector<double>* refit_x, std::vector<double>* x_out,
     const EnergyBoundPlan* plan = nullptr,
-    const std::vector<double>* search_factor = nullptr) {
+    const std::vector<double>* search_factor = nullptr,
+    double scale_cap = HUGE_VAL) {
   const size_t n = init.threads.size();
   auto weave = std::make_shared<Weave>(init);
   const ClothVector& v = weave->vector;
@@ -231,6 +232,7 @@ ClothFitResult FitClothThrough(
   };
   lsq.block_sizes = v.BlockSizes();
   lsq.specs[v.Scale()].free = options.fit_scale;
+  lsq.specs[v.Scale()].upper = std::min(lsq.specs[v.Scale()].upper, scale_cap);
   const Weighting weighting(table, options.solver.noise);
   lsq.sigma_known = weighting.LevelKnown();
 
@@ -390,9 +392,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
     result = SettleEnergyBound<ClothParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ClothParams&,
-            const std::vector<double>* search_factor) {
+            const std::vector<double>* search_factor, double scale_cap) {
           return FitClothThrough(table, init, options, nullptr, &x, &x, &plan,
-                                 search_factor);
+                                 search_factor, scale_cap);
         },
         std::move(start));
   } else {

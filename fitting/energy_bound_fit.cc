@@ -64,6 +64,13 @@ std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
   return f;
 }
 
+bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound) {
+  for (double g : EnergyBoundFactors(table, bound)) {
+    if (!(g >= 1.0 - kEnergyBoundSettled)) return false;
+  }
+  return true;
+}
+
 void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
                        EnergyBoundPlan* plan) {
   const int n = static_cast<int>(plan->light.size());
@@ -95,13 +102,18 @@ void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
   }
 }
 
-double RelativeFactorChange(const std::vector<double>& g,
-                            const std::vector<double>& x) {
-  double change = 0.0;
-  for (size_t i = 0; i < g.size(); ++i) {
-    change = std::max(change, std::abs(g[i] - x[i]) / std::max(x[i], 1e-300));
+double EnergyBoundScaleCap(const MeasurementTable& table,
+                           const EnergyBound& tables, double scale) {
+  double cap = 0.0;
+  for (const TableRow& row : table.rows) {
+    if (!(row.wi.z > 0.0 && row.wo.z > 0.0)) continue;
+    const double albedo = EnergyBoundAlbedo(tables, row.wi.z, row.wo.z);
+    if (!(albedo > 0.0)) return HUGE_VAL;
+    cap = std::max(cap, std::max(1.0, scale) / albedo);
   }
-  return change;
+  // At most 1, the scale dims the bounded model (the bound is the
+  // model's at 1): it always has an effect there.
+  return cap > 0.0 ? std::max(1.0, cap) : HUGE_VAL;
 }
 
 void ReportEnergyBound(const std::vector<double>& factors, int refits,
@@ -124,6 +136,25 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
       "the energy bound did not settle in " + std::to_string(refits) +
       " solves (its largest albedos moved to other directions each time); "
       "the errors are the last solve's";
+  if (!report->message.empty()) msg += "; " + report->message;
+  report->message = msg;
+}
+
+void ReportScaleCap(double scale, double cap, FitReport* report) {
+  if (!(scale >= cap * (1.0 - 1e-9))) return;  // cap HUGE_VAL: never
+  bool fitted = false;  // a scale held at 1 may equal a cap of 1
+  for (const ParameterReport& p : report->parameters) {
+    fitted = fitted || (p.name == "scale" && p.at_bound);
+  }
+  if (!fitted) return;
+  report->converged = false;
+  char text[240];
+  std::snprintf(text, sizeof(text),
+                "the scale reached %.4g, above which the energy bound divides "
+                "it out of every row: the data are brighter than the bounded "
+                "model reflects",
+                cap);
+  std::string msg = text;
   if (!report->message.empty()) msg += "; " + report->message;
   report->message = msg;
 }

@@ -24,6 +24,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,14 @@ const MeasurementTable& FirstFitRows(const MeasurementTable& table,
 // every row of `table`: how two starts of the bounded model compare.
 double BoundedCost(const MeasurementTable& table, const NoiseModel& noise,
                    const ModelParams& bounded);
+
+// EnergyBoundFactor at every row (all 1 for a null bound).
+std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
+                                       const EnergyBound* bound);
+
+// Whether `bound` (may be null) lowers no row of `table`: every factor at
+// least 1 - kEnergyBoundSettled.
+bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound);
 
 // The start of a bounded fit: the paper's model fitted to some rows, with
 // its bound and the plan of that bound's entries (found once: the azimuth
@@ -93,19 +102,28 @@ BoundedStart<P> ChooseBoundedStart(
   MeasurementTable first_storage;
   const MeasurementTable& first = FirstFitRows(table, &first_storage);
   if (&first == &table) return bounded(std::move(every_fit));
+  // Where the fit of every row converged and its bound lowers none of
+  // them, that fit is the bounded model's (SettleEnergyBound): no other
+  // start is needed. (One stopped at a search limit may be a poor basin,
+  // which the rows within 60 degrees avoid: the thread test's table.)
+  std::optional<BoundedStart<P>> every;
+  if (every_fit.report.usable) {
+    const bool converged = every_fit.report.converged;
+    every = bounded(std::move(every_fit));
+    if (converged && LowersNoRow(table, every->bound.get())) {
+      return std::move(*every);
+    }
+  }
   FitResult<P> within_fit = fit_rows(first);
-  if (!within_fit.report.usable) return bounded(std::move(every_fit));
+  if (!within_fit.report.usable) {
+    return every ? std::move(*every) : bounded(std::move(every_fit));
+  }
   within_fit.report.rows = static_cast<int>(table.rows.size());
   BoundedStart<P> within = bounded(std::move(within_fit));
   within.of_every_row = false;
-  if (!every_fit.report.usable) return within;  // its bound not searched
-  BoundedStart<P> every = bounded(std::move(every_fit));
-  return cost(within) < cost(every) ? within : every;
+  if (!every) return within;  // its bound not searched
+  return cost(within) < cost(*every) ? within : std::move(*every);
 }
-
-// EnergyBoundFactor at every row (all 1 for a null bound).
-std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
-                                       const EnergyBound* bound);
 
 // Marks held (EnergyBoundEntry::held) every entry of `plan` that no row's
 // factor depends on, nor would if the model were 25 % brighter: the
@@ -150,9 +168,23 @@ bool MergeEnergyBoundPlans(const P& p, const EnergyBoundPlan& fresh,
   return same;
 }
 
-// Largest |g - x| / x over the rows.
-double RelativeFactorChange(const std::vector<double>& g,
-                            const std::vector<double>& x);
+// The largest factor on the model (its `scale`, fitted with --fit-scale)
+// that still has an effect through the bound whose tables at the model's
+// current scale `scale` are `tables`: the bound takes the model at
+// max(1, scale), so above 1 a row's factor divides the scale out once the
+// row's albedo reaches 1, and above the largest such threshold over the
+// rows (max(1, scale) / the row's albedo), and at least 1, the scale
+// changes no row. A
+// solve would wander along it without end (the data brighter than the
+// bounded model can reflect). HUGE_VAL where some reflection row is not
+// bounded by the tables at all (albedo 0).
+double EnergyBoundScaleCap(const MeasurementTable& table,
+                           const EnergyBound& tables, double scale);
+
+// Where a fitted scale ended at its cap (EnergyBoundScaleCap; the
+// report's parameter "scale" at its bound): not converged, and the message
+// says why.
+void ReportScaleCap(double scale, double cap, FitReport* report);
 
 // Records in the report what the bound did: how many rows it lowers and by
 // how much, the solves it took; when it did not settle within
@@ -162,18 +194,21 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
                        bool settled, FitReport* report);
 
 // The fit of the bounded model from `start` (ChooseBoundedStart):
-// refit(plan, from, search_factor) solves the bounded model, its tables
-// through `plan`, from the parameters `from` and, with search_factor, from
-// the start search too, done through those fixed factors of the rows (the
-// first solve: the first fit's rows may not tell a weak thread's
-// parameters, nor its basin be that of every row). Returns the last solve
-// with its bound attached (the tables it was solved through), its report
-// the bound's effect, the iterations of all solves and the furnace check.
+// refit(plan, from, search_factor, scale_cap) solves the bounded model, its
+// tables through `plan`, from the parameters `from` and, with
+// search_factor, from the start search too, done through those fixed
+// factors of the rows (the first solve: the first fit's rows may not tell
+// a weak thread's parameters, nor its basin be that of every row); a
+// fitted scale stays at most scale_cap (EnergyBoundScaleCap at `from`). Returns
+// the last solve with its bound attached (the tables it was solved through),
+// its report the bound's effect, the iterations of all solves and the furnace
+// check.
 template <typename P>
 FitResult<P> SettleEnergyBound(
     const MeasurementTable& table,
     const std::function<FitResult<P>(const EnergyBoundPlan&, const P&,
-                                     const std::vector<double>*)>& refit,
+                                     const std::vector<double>*, double)>&
+        refit,
     BoundedStart<P> start) {
   FitResult<P> result = std::move(start.fit);
   FitResult<P>* fit = &result;
@@ -182,17 +217,19 @@ FitResult<P> SettleEnergyBound(
   std::vector<double> g = EnergyBoundFactors(table, bound.get());
   // Where the bound lowers no row, the paper's model's fit is the bounded
   // model's.
-  bool settled = start.of_every_row &&
-                 RelativeFactorChange(g, std::vector<double>(g.size(), 1.0)) <=
-                     kEnergyBoundSettled;
+  bool settled = start.of_every_row && LowersNoRow(table, bound.get());
   int refits = 0, iterations = fit->report.iterations;
+  double scale_cap = HUGE_VAL;  // the last solve's
   const int starts = fit->report.starts;
   const std::string search = fit->report.search;  // the first fit's
   while (!settled && refits < kEnergyBoundRefits) {
     if (!fit->report.usable) return result;
-    HoldUnusedEntries(table, *EnergyBoundByPlan(fit->params, plan), &plan);
+    const std::shared_ptr<const EnergyBound> tables =
+        EnergyBoundByPlan(fit->params, plan);
+    HoldUnusedEntries(table, *tables, &plan);
     const P from = fit->params;
-    *fit = refit(plan, from, refits == 0 ? &g : nullptr);
+    scale_cap = EnergyBoundScaleCap(table, *tables, from.scale);
+    *fit = refit(plan, from, refits == 0 ? &g : nullptr, scale_cap);
     iterations += fit->report.iterations;
     ++refits;
     // The tables it was solved through, against those found afresh.
@@ -208,6 +245,7 @@ FitResult<P> SettleEnergyBound(
   fit->report.search = search;
   fit->params.energy_bound = bound;
   ReportEnergyBound(g, refits, settled, &fit->report);
+  ReportScaleCap(fit->params.scale, scale_cap, &fit->report);
   ReportModelEnergy(ModelParams(fit->params), &fit->report);
   return result;
 }

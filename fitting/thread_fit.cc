@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "fitting/energy_bound_fit_internal.h"
@@ -85,12 +86,14 @@ std::vector<std::vector<double>> SearchThreadStarts(
 // One fit of the model through the rows' fixed bound factors (null: the
 // paper's model), or (`plan`) of the bounded model with its tables through
 // that plan: from the start search, from `refit_from` alone, or from both
-// when `search_factor` is given (the rows' factors the search sees).
+// when `search_factor` is given (the rows' factors the search sees); a
+// fitted scale at most scale_cap.
 ThreadFitResult FitThreadThrough(
     const MeasurementTable& table, const ThreadFitOptions& options,
     const std::vector<double>* bound_factor, const ThreadParams* refit_from,
     const EnergyBoundPlan* plan = nullptr,
-    const std::vector<double>* search_factor = nullptr) {
+    const std::vector<double>* search_factor = nullptr,
+    double scale_cap = HUGE_VAL) {
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(ThreadParams());
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -100,6 +103,7 @@ ThreadFitResult FitThreadThrough(
   lsq.block_sizes = {kThreadFlatSize, 1};
   lsq.specs.push_back(SpecOf(kFitScale, kFitScale.name));
   lsq.specs.back().free = options.fit_scale;
+  lsq.specs.back().upper = std::min(lsq.specs.back().upper, scale_cap);
   const Weighting weighting(table, options.solver.noise);
   lsq.sigma_known = weighting.LevelKnown();
   ResidualBlocks blocks;
@@ -157,9 +161,9 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     result = SettleEnergyBound<ThreadParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ThreadParams& from,
-            const std::vector<double>* search_factor) {
+            const std::vector<double>* search_factor, double scale_cap) {
           return FitThreadThrough(table, options, nullptr, &from, &plan,
-                                  search_factor);
+                                  search_factor, scale_cap);
         },
         ChooseBoundedStart<ThreadParams>(
             table, options.solver.noise, [&](const MeasurementTable& rows) {

@@ -132,6 +132,16 @@ G EnergyBoundFactor(const EnergyBound* b, const G& ci, const G& co) {
                                 static_cast<int>(b->light.size()), ci, co);
 }
 
+// The largest directional albedo the factor at cosines (ci, co) divides
+// by, max(A_L(ci), A_V(co)) from the tables (the fade aside): the factor
+// is below 1 (the fade aside) where it exceeds 1.
+inline double EnergyBoundAlbedo(const EnergyBound& b, double ci, double co) {
+  using energy_bound_internal::Interpolate;
+  const int n = static_cast<int>(b.light.size());
+  return std::max(Interpolate<double>(b.light.data(), n, ci) / ci,
+                  Interpolate<double>(b.view.data(), n, co));
+}
+
 // How one entry of a bound's table is computed: the albedo of one channel
 // toward one azimuth (radians) by the midpoint rule over `rings` rings, or
 // (copy) the next node's entry. ComputeEnergyBound finds the azimuth and

@@ -267,6 +267,46 @@ TEST(ClothEnergy, BoundedFitsWriteTheirBoundAndReachTheBoundedOptimum) {
   }
 }
 
+// Data far brighter than the bounded model reflects anywhere (the bounded
+// linen's table 50 x): above some scale the bound divides the scale out of
+// every row, and a fitted scale would wander there without effect (CUReT
+// linen: to 1874, not settling in 201 s). The fit stops it where it stops
+// having an effect: the scale ends on its cap (at bound, not converged,
+// the message says why), above it the sum of squares is flat, below it
+// higher.
+TEST(ClothEnergy, FittedScaleStopsWhereTheBoundDividesItOut) {
+  ClothParams linen;
+  ASSERT_TRUE(GetPreset("linen_plain", &linen));
+  MeasurementTable table =
+      testing_util::NoisyTable(WithEnergyBound(linen), 0.0, 3, 300);
+  for (TableRow& row : table.rows) row.value *= 50.0;
+  ClothFitOptions options;
+  options.fit_scale = true;
+  options.energy_bound = true;
+  options.free_only = {"scale"};
+  options.solver.noise.kind = NoiseKind::kAbsolute;
+  const ClothFitResult fit = FitCloth(table, linen, options);
+  ASSERT_TRUE(fit.report.usable) << fit.report.message;
+  EXPECT_FALSE(fit.report.converged);
+  EXPECT_NE(fit.report.message.find("brighter than the bounded model"),
+            std::string::npos)
+      << fit.report.message;
+  bool at_bound = false;
+  for (const ParameterReport& p : fit.report.parameters) {
+    if (p.name == "scale") at_bound = p.at_bound;
+  }
+  EXPECT_TRUE(at_bound);
+  EXPECT_LE(ModelEnergy(fit.params).max_albedo, 1.0);
+  auto squares = [&](double scale) {
+    ClothParams c = fit.params;
+    c.scale = scale;
+    return BoundedSquares(c, table);
+  };
+  const double at_cap = squares(fit.params.scale);
+  EXPECT_NEAR(squares(1.5 * fit.params.scale), at_cap, 1e-9 * at_cap);
+  EXPECT_GT(squares(fit.params.scale / 1.05), at_cap * (1.0 + 1e-6));
+}
+
 // The bounded fit reaches the bounded model's optimum, not a point where
 // the rows' bound factors, held fixed, would have it: on a table of the
 // bounded satin thread with 3 % noise (the bound lowers most rows toward
