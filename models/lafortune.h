@@ -236,30 +236,39 @@ T LobePower(const T& a, const T& n) {
   }
 }
 
+// Whether a lobe is grey: every channel's Cx, Cy, Cz and N the same (a
+// one-channel table's fit, or a grey texel).
+template <typename T>
+bool LafortuneLobeGrey(const LafortuneLobeT<T>& lobe) {
+  for (int c = 1; c < 3; ++c) {
+    if (!(lobe.cx[c] == lobe.cx[0] && lobe.cy[c] == lobe.cy[0] &&
+          lobe.cz[c] == lobe.cz[0] && lobe.n[c] == lobe.n[0])) {
+      return false;
+    }
+  }
+  return true;
+}
+
 // The bracket of eq. 2, rho_d + sum_k [Cx xx + Cy yy + Cz zz]^N, for C
 // channels at once (lobes outer, channels inner), with the products
 // xx = l_x v_x, yy = l_y v_y, zz = l_z v_z. `diffuse(c)` returns rho_d of
-// channel c and `lobe(k, q, c)` entry q (Cx, Cy, Cz, N) of lobe k. The
-// products' scalar type G may differ from the parameters' T: a fit
-// multiplies fixed double products with Jet parameters, a third of the
-// cost of Jet times Jet.
-template <int C, typename T, typename G, typename Diffuse, typename Lobe>
-std::array<T, C> LobeSums(const Diffuse& diffuse, const Lobe& lobe, int lobes,
-                          const G& xx, const G& yy, const G& zz) {
+// channel c, `lobe(k, q, c)` entry q (Cx, Cy, Cz, N) of lobe k, and
+// `grey(k)` whether lobe k is grey (LafortuneLobeGrey; asked only of
+// floating-point parameters). The products' scalar type G may differ from
+// the parameters' T: a fit multiplies fixed double products with Jet
+// parameters, a third of the cost of Jet times Jet.
+template <int C, typename T, typename G, typename Diffuse, typename Lobe,
+          typename Grey>
+std::array<T, C> LobeSums(const Diffuse& diffuse, const Lobe& lobe,
+                          const Grey& grey, int lobes, const G& xx, const G& yy,
+                          const G& zz) {
   std::array<T, C> sum;
   for (int c = 0; c < C; ++c) sum[c] = diffuse(c);
   for (int k = 0; k < lobes; ++k) {
     if constexpr (std::is_floating_point_v<T> && C > 1) {
-      // A grey lobe (every channel's Cx, Cy, Cz and N the same: a
-      // one-channel table's fit, or a grey texel) has one power for all
-      // channels, the same value bit for bit.
-      bool grey = true;
-      for (int q = 0; q < 4 && grey; ++q) {
-        for (int c = 1; c < C && grey; ++c) {
-          grey = lobe(k, q, c) == lobe(k, q, 0);
-        }
-      }
-      if (grey) {
+      // A grey lobe has one power for all channels, the same value bit
+      // for bit.
+      if (grey(k)) {
         const T power = LobePower(
             lobe(k, 0, 0) * xx + lobe(k, 1, 0) * yy + lobe(k, 2, 0) * zz,
             lobe(k, 3, 0));
@@ -282,8 +291,8 @@ template <typename T, typename G>
 T LobeSum(const T* x, int lobes, const G& xx, const G& yy, const G& zz) {
   return LobeSums<1, T>(
       [x](int) -> const T& { return x[0]; },
-      [x](int k, int q, int) -> const T& { return x[1 + 4 * k + q]; }, lobes,
-      xx, yy, zz)[0];
+      [x](int k, int q, int) -> const T& { return x[1 + 4 * k + q]; },
+      [](int) { return false; }, lobes, xx, yy, zz)[0];
 }
 
 // The foreshortening l.z of eq. 2, taken as 0 below the texel's plane.
@@ -300,17 +309,25 @@ T LafortuneF1Channel(const T* x, int lobes, const Vec3<G>& l,
 }
 
 // f1 per channel (eq. 2), reading the lobes where they are.
-template <typename T, typename G>
-Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
-                    const Vec3<G>& v) {
+// grey(k): whether lobe k is grey (LafortuneLobeGrey, or known).
+template <typename T, typename G, typename Grey>
+Vec3<T> LafortuneF1With(const LafortuneParamsT<T>& p, const Grey& grey,
+                        const Vec3<G>& l, const Vec3<G>& v) {
   const std::array<T, 3> sum = LobeSums<3, T>(
       [&p](int c) -> const T& { return p.diffuse[c]; },
       [&p](int k, int q, int c) -> const T& {
         return (p.lobes[k].*kLafortuneLobeFields<T>[q])[c];
       },
-      static_cast<int>(p.lobes.size()), l.x* v.x, l.y* v.y, l.z* v.z);
+      grey, static_cast<int>(p.lobes.size()), l.x* v.x, l.y* v.y, l.z* v.z);
   const T foreshortening(Foreshortening(l));
   return Vec3<T>(sum[0], sum[1], sum[2]) * foreshortening;
+}
+
+template <typename T, typename G>
+Vec3<T> LafortuneF1(const LafortuneParamsT<T>& p, const Vec3<G>& l,
+                    const Vec3<G>& v) {
+  return LafortuneF1With(
+      p, [&p](int k) { return LafortuneLobeGrey(p.lobes[k]); }, l, v);
 }
 
 // A texel's local frame: tangent, bi-normal, normal (unit, right-handed).
@@ -421,14 +438,42 @@ struct LafortuneModel {
 // view.
 // LafortuneRhoInFrame takes the texel's frame made once (MakeTexelFrame of
 // the normal) and evaluates in any floating-point type (the table's
-// lookup in double).
+// lookup in double); with `shape`, what else a renderer knows of the texel
+// beforehand.
+struct LafortuneShape {
+  bool surface_frame = false;  // the frame is the surface's (normal +z)
+  std::array<bool, kMaxLafortuneLobes> grey{};  // LafortuneLobeGrey
+};
+
+template <typename T>
+LafortuneShape MakeLafortuneShape(const LafortuneParamsT<T>& p,
+                                  const TexelFrameT<T>& frame) {
+  LafortuneShape shape;
+  const TexelFrameT<T> surface;
+  shape.surface_frame =
+      frame.t == surface.t && frame.b == surface.b && frame.n == surface.n;
+  for (size_t k = 0; k < p.lobes.size() && k < shape.grey.size(); ++k) {
+    shape.grey[k] = LafortuneLobeGrey(p.lobes[k]);
+  }
+  return shape;
+}
+
 template <typename T>
 Vec3<T> LafortuneRhoInFrame(const LafortuneParamsT<T>& p,
                             const TexelFrameT<T>& frame, const ViewTable& lut,
-                            const Vec3<T>& l, const Vec3<T>& v) {
+                            const Vec3<T>& l, const Vec3<T>& v,
+                            const LafortuneShape* shape = nullptr) {
   if (!(l.z > T(0.0) && v.z > T(0.0))) return Vec3<T>(T(0.0));
-  const Vec3<T> f1 =
-      LafortuneF1(p, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
+  Vec3<T> f1;
+  if (shape == nullptr) {
+    f1 = LafortuneF1(p, ToTexelFrame(frame, l), ToTexelFrame(frame, v));
+  } else {
+    // In the surface frame, ToTexelFrame is the identity (w.x + 0 + 0).
+    const auto grey = [shape](int k) { return shape->grey[k]; };
+    f1 = shape->surface_frame ? LafortuneF1With(p, grey, l, v)
+                              : LafortuneF1With(p, grey, ToTexelFrame(frame, l),
+                                                ToTexelFrame(frame, v));
+  }
   if (lut.views.empty()) return f1;  // T(v) = 1
   return Vec3<T>(LookupView(lut, glm::dvec3(v)).color) * f1;
 }

@@ -99,12 +99,14 @@ PreparedCloth<R> PrepareCloth(const ClothParams& c) {
   return out;
 }
 
-// A Lafortune texel with its frame.
+// A Lafortune texel with its frame, its grey lobes and whether its frame is
+// the surface's (LafortuneShape).
 template <typename R>
 struct PreparedLafortune {
   LafortuneParamsT<R> params;
   TexelFrameT<R> frame;
   ViewTable lut;
+  LafortuneShape shape;
 };
 
 template <typename R>
@@ -121,6 +123,7 @@ PreparedLafortune<R> PrepareLafortune(const LafortuneModel& m) {
   out.frame.b = Cast<R>(f.b);
   out.frame.n = Cast<R>(f.n);
   out.lut = m.lut;
+  out.shape = MakeLafortuneShape(out.params, out.frame);
   return out;
 }
 
@@ -190,7 +193,7 @@ CLOTHFIT_INLINE_ALL Vec3<R> NativeValue(const PreparedCloth<R>& p,
 template <typename R>
 Vec3<R> NativeValue(const PreparedLafortune<R>& p, const Vec3<R>& wi,
                     const Vec3<R>& wo) {
-  return LafortuneRhoInFrame(p.params, p.frame, p.lut, wi, wo);
+  return LafortuneRhoInFrame(p.params, p.frame, p.lut, wi, wo, &p.shape);
 }
 
 // A value as R, saturated at R's largest finite value (a float

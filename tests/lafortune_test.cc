@@ -129,6 +129,34 @@ TEST(LafortuneModel, GreyLobeSharedPowerEqualsEachChannelsOwnSum) {
   }
 }
 
+// What a renderer knows of a texel beforehand (LafortuneShape): which lobes
+// are grey and whether the frame is the surface's; the values with it are
+// those without, bit for bit.
+TEST(LafortuneModel, ShapeKnownBeforehandGivesTheSameValues) {
+  LafortuneParams p;
+  p.diffuse = glm::dvec3(0.1, 0.2, 0.3);
+  p.lobes = {LafortuneLobe(), LafortuneLobe(), LafortuneLobe()};
+  p.lobes[0].cx = glm::dvec3(-0.7);          // grey
+  p.lobes[1].n = glm::dvec3(7.5, 7.5, 7.6);  // not: N differs
+  p.lobes[2].cy = glm::dvec3(-0.9, -1, -1);  // not: Cy differs
+  for (const glm::dvec3& normal :
+       {glm::dvec3(0, 0, 1), glm::dvec3(0.3, -0.2, 1.0)}) {
+    const TexelFrame frame = MakeTexelFrame(normal);
+    const LafortuneShape shape = MakeLafortuneShape(p, frame);
+    EXPECT_EQ(shape.surface_frame, normal.x == 0.0);
+    EXPECT_TRUE(shape.grey[0]);
+    EXPECT_FALSE(shape.grey[1]);
+    EXPECT_FALSE(shape.grey[2]);
+    const ViewTable lut;
+    for (const glm::dvec3& l : Hemisphere(7)) {
+      for (const glm::dvec3& v : Hemisphere(5)) {
+        EXPECT_EQ(LafortuneRhoInFrame(p, frame, lut, l, v, &shape),
+                  LafortuneRhoInFrame(p, frame, lut, l, v));
+      }
+    }
+  }
+}
+
 TEST(LafortuneModel, TexelFrameIsOrthonormalAndTheSurfaceFrameForPlusZ) {
   const TexelFrame z = MakeTexelFrame(glm::dvec3(0, 0, 3));
   EXPECT_EQ(z.t, glm::dvec3(1, 0, 0));

@@ -39,7 +39,8 @@ std::vector<std::pair<glm::dvec3, glm::dvec3>> HemispherePairs() {
 }
 
 // Every preset, a thread, a Lafortune texel with a tilted normal, two lobes
-// and a lookup table, a rotated cloth with a diffuse term, and a slab.
+// and a lookup table, one with grey lobes in the surface frame, a rotated
+// cloth with a diffuse term, and a slab.
 std::vector<std::pair<std::string, ModelParams>> Models() {
   std::vector<std::pair<std::string, ModelParams>> out;
   for (const std::string& name : PresetNames()) {
@@ -65,6 +66,13 @@ std::vector<std::pair<std::string, ModelParams>> Models() {
   laf.lut.color = {glm::dvec3(1.2), glm::dvec3(0.8, 0.9, 1.0), glm::dvec3(1.0)};
   laf.lut.alpha = {1.0, 1.0, 1.0};
   out.push_back({"lafortune", laf});
+  // Grey lobes in the surface frame: the prepared texel's one power per
+  // lobe and no frame rotation (LafortuneShape).
+  LafortuneModel grey;
+  grey.params.lobes = {LafortuneLobe(), LafortuneLobe()};
+  grey.params.lobes[1].n = glm::dvec3(3.0);
+  grey.params.lobes[1].cz = glm::dvec3(0.7);
+  out.push_back({"grey lafortune", grey});
   SlabParams slab;
   slab.tau = glm::dvec3(0.4);
   slab.albedo = {0.9, 0.8, 0.7};
