@@ -191,8 +191,8 @@ CLOTHFIT_INLINE_ALL Vec3<R> NativeValue(const PreparedCloth<R>& p,
 }
 
 template <typename R>
-Vec3<R> NativeValue(const PreparedLafortune<R>& p, const Vec3<R>& wi,
-                    const Vec3<R>& wo) {
+CLOTHFIT_INLINE_ALL Vec3<R> NativeValue(const PreparedLafortune<R>& p,
+                                        const Vec3<R>& wi, const Vec3<R>& wo) {
   return LafortuneRhoInFrame(p.params, p.frame, p.lut, wi, wo, &p.shape);
 }
 
