@@ -46,6 +46,10 @@ inline constexpr int kEnergyBoundRefits = 4;
 // the tables' margin (kEnergyBoundMargin, 5 %) covers it.
 inline constexpr double kEnergyBoundEntrySlack = 1e-3;
 
+// The most peaks of an entry's albedo over azimuth a fit follows
+// (EnergyBoundEntry::others and its azimuth).
+inline constexpr size_t kEnergyBoundPeaks = 4;
+
 // The rows of `table` with both cosines >= cos 60 degrees, or <= 0 (where
 // the bound does not act): a quarter of a table sampled uniformly over the
 // hemisphere. When fewer than max(20, a tenth of the rows), those within 87
@@ -136,19 +140,23 @@ void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
 
 // After a solve through `*plan` ending at p, whose tables there are
 // `*bound`: whether the plan found afresh at p (`fresh`, its entries held
-// where the rows do not depend on them) agrees, every entry found afresh
-// at most kEnergyBoundEntrySlack above the solved one and every entry the
-// rows depend on derived in the solve. Where not, the entries that are
-// above or were held take the fresh plan's place in *plan, and *bound is
-// the larger of the two tables entry by entry (so that it conserves
-// energy).
+// where the rows of `table` do not depend on them) agrees with it for the
+// rows: every entry the rows depend on (derived in the solve, or by the
+// fresh plan) found afresh at most kEnergyBoundEntrySlack above the solved
+// one, and derived in the solve. An entry neither plan has the rows depend
+// on may come out above (the parameters moved far from where the plan was
+// found, and no row's factor follows it); it is raised in *bound all the
+// same, and the fit agrees as long as every row's factor stays as solved.
+// The entries found above or underived take the fresh plan's place in
+// *plan, and *bound is the larger of the two tables entry by entry (so
+// that it conserves energy).
 template <typename P>
-bool MergeEnergyBoundPlans(const P& p, const EnergyBoundPlan& fresh,
-                           EnergyBoundPlan* plan,
+bool MergeEnergyBoundPlans(const MeasurementTable& table, const P& p,
+                           const EnergyBoundPlan& fresh, EnergyBoundPlan* plan,
                            std::shared_ptr<const EnergyBound>* bound) {
   const std::shared_ptr<const EnergyBound> found = EnergyBoundByPlan(p, fresh);
   auto merged = std::make_shared<EnergyBound>(**bound);
-  bool same = true;
+  bool same = true, raised = false;
   for (int side = 0; side < 2; ++side) {
     auto& entries = side == 0 ? plan->light : plan->view;
     const auto& fresh_entries = side == 0 ? fresh.light : fresh.view;
@@ -157,14 +165,37 @@ bool MergeEnergyBoundPlans(const P& p, const EnergyBoundPlan& fresh,
     for (size_t k = 0; k < entries.size(); ++k) {
       const bool above = now[k] > out[k] * (1.0 + kEnergyBoundEntrySlack);
       const bool underived = !fresh_entries[k].held && entries[k].held;
-      if (above || underived) {
-        same = false;
+      const bool idle = entries[k].held && fresh_entries[k].held;
+      if (underived || (above && !idle)) same = false;
+      if (above && !idle) {
+        // Another peak rose above the one the solve followed: the next
+        // follows both (and the earlier ones), at most kEnergyBoundPeaks.
+        std::vector<double> peaks = {entries[k].phi};
+        peaks.insert(peaks.end(), entries[k].others.begin(),
+                     entries[k].others.end());
+        if (peaks.size() >= kEnergyBoundPeaks)
+          peaks.resize(kEnergyBoundPeaks - 1);
+        const bool same_channel =
+            entries[k].channel == fresh_entries[k].channel;
+        entries[k] = fresh_entries[k];
+        if (same_channel) entries[k].others = peaks;
+      } else if (above || underived) {
         entries[k] = fresh_entries[k];
       }
-      if (above) out[k] = now[k];
+      if (above) {
+        out[k] = now[k];
+        raised = true;
+      }
     }
   }
-  if (!same) *bound = merged;
+  if (same && raised) {  // only idle entries raised: the rows must not see it
+    const std::vector<double> solved = EnergyBoundFactors(table, bound->get());
+    const std::vector<double> now = EnergyBoundFactors(table, merged.get());
+    for (size_t i = 0; i < solved.size() && same; ++i) {
+      same = std::abs(now[i] - solved[i]) <= 1e-12 * solved[i];
+    }
+  }
+  if (raised) *bound = merged;
   return same;
 }
 
@@ -232,12 +263,16 @@ FitResult<P> SettleEnergyBound(
     *fit = refit(plan, from, refits == 0 ? &g : nullptr, scale_cap);
     iterations += fit->report.iterations;
     ++refits;
-    // The tables it was solved through, against those found afresh.
+    // The tables it was solved through (its plan refined to the crests at
+    // its last point, as the solve's tables were), against those found
+    // afresh.
+    plan = RefineEnergyBoundPlanAt(fit->params, plan);
     bound = EnergyBoundByPlan(fit->params, plan);
     EnergyBoundPlan fresh_plan;
     EnergyBoundOf(fit->params, &fresh_plan);
     HoldUnusedEntries(table, *bound, &fresh_plan);
-    settled = MergeEnergyBoundPlans(fit->params, fresh_plan, &plan, &bound);
+    settled =
+        MergeEnergyBoundPlans(table, fit->params, fresh_plan, &plan, &bound);
     g = EnergyBoundFactors(table, bound.get());
   }
   fit->report.iterations = iterations;

@@ -31,15 +31,24 @@ namespace clothfit {
 // each. The evaluator supplies BoundRho(blocks), a callable rho(wi, wo)
 // giving the paper's model's cosine-weighted value without the scale; the
 // scale block (index into the blocks, or -1) enters as max(1, scale), as
-// in models/bounded.h.
+// in models/bounded.h. At each parameter point the plan's derived entries
+// are first refined to their crests there (Refine, RefineEnergyBoundPlan),
+// so that they follow peaks the parameters move.
 template <class Evaluator>
 class BoundTablesFunctor {
  public:
   BoundTablesFunctor(std::shared_ptr<const Evaluator> evaluator,
                      EnergyBoundPlan plan, int scale_block)
       : evaluator_(std::move(evaluator)),
-        plan_(std::move(plan)),
+        base_(std::move(plan)),
+        plan_(base_),
         scale_block_(scale_block) {}
+
+  // The plan refined at the point `blocks` (doubles), for the evaluations
+  // at that point that follow.
+  void Refine(const double* const* blocks) const {
+    plan_ = RefineEnergyBoundPlan(Rho(blocks), base_);
+  }
 
   // With Jets, the held entries of the plan are the values given by
   // SetHeld (the tables in double at the same point), without derivative.
@@ -48,27 +57,34 @@ class BoundTablesFunctor {
   // GCC leaves Eigen's per-lane Jet products as calls.
   template <typename T>
   CLOTHFIT_FLATTEN bool operator()(const T* const* blocks, T* tables) const {
-    const T s =
-        scale_block_ >= 0 ? Max(T(1.0), blocks[scale_block_][0]) : T(1.0);
-    const auto rho = evaluator_->BoundRho(blocks);
     const int n = static_cast<int>(plan_.light.size());
     const bool jets = !std::is_same_v<T, double>;
-    EnergyBoundTables<T>(
-        plan_,
-        [&](const glm::dvec3& wi, const glm::dvec3& wo) {
-          return rho(wi, wo) * s;
-        },
-        tables, tables + n, jets ? held_.data() : nullptr);
+    EnergyBoundTables<T>(plan_, Rho(blocks), tables, tables + n,
+                         jets ? held_.data() : nullptr);
     return true;
   }
 
   void SetHeld(std::vector<double> held) const { held_ = std::move(held); }
 
  private:
+  // The model at the blocks, its scale max(1, scale).
+  template <typename T>
+  auto Rho(const T* const* blocks) const {
+    const T s =
+        scale_block_ >= 0 ? Max(T(1.0), blocks[scale_block_][0]) : T(1.0);
+    return [rho = evaluator_->BoundRho(blocks), s](const glm::dvec3& wi,
+                                                   const glm::dvec3& wo) {
+      return rho(wi, wo) * s;
+    };
+  }
+
   std::shared_ptr<const Evaluator> evaluator_;
-  EnergyBoundPlan plan_;
+  EnergyBoundPlan base_;
+  // base_ refined at the last point; CachedTables sets it (Refine) and
+  // held_ under its lock.
+  mutable EnergyBoundPlan plan_;
   int scale_block_;
-  mutable std::vector<double> held_;  // CachedTables sets it under its lock
+  mutable std::vector<double> held_;
 };
 
 // Whether an evaluator supplies BoundRho (the thread and cloth fits).
@@ -104,6 +120,7 @@ class CachedTables : public ceres::CostFunction {
     if (key != key_) {
       values_.assign(m, 0.0);
       has_jacobian_ = false;
+      functor_->Refine(parameters);
       if (!inner_->Evaluate(parameters, values_.data(), nullptr)) {
         key_.clear();
         return false;

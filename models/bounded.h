@@ -83,6 +83,14 @@ std::shared_ptr<const EnergyBound> EnergyBoundByPlan(
   return bound;
 }
 
+// `plan` refined to the crests of the albedos of a thread or cloth at p
+// (RefineEnergyBoundPlan).
+template <typename P>
+EnergyBoundPlan RefineEnergyBoundPlanAt(const P& p,
+                                        const EnergyBoundPlan& plan) {
+  return RefineEnergyBoundPlan(bounded_internal::PaperRho(p), plan);
+}
+
 // `params` with the bound of its own values attached (a thread or cloth);
 // every other model as it is (Lafortune, slab, holes, sheen conserve energy
 // by their own rules).

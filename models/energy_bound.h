@@ -156,6 +156,11 @@ struct EnergyBoundEntry {
   int rings = 16;
   bool copy = false;
   bool held = false;
+  // Other azimuths of the same channel whose albedo may peak above phi's
+  // as the parameters move (peaks found there before, in a fit's plan
+  // merged from several): RefineEnergyBoundPlan follows each one's crest
+  // and takes the largest.
+  std::vector<double> others;
 };
 
 struct EnergyBoundPlan {
@@ -200,14 +205,14 @@ template <typename Rho>
 EnergyBoundEntry LargestAlbedo(const Rho& rho, bool light, double c, int rings,
                                double phi0, int n_phi, double* value) {
   const HemisphereQuadrature& q = Quadrature(rings);
-  EnergyBoundEntry best{phi0, 0, rings, false};
+  EnergyBoundEntry best{phi0, 0, rings, false, false, {}};
   double best_value = -1.0;
   auto visit = [&](double phi) {
     const glm::dvec3 a = AlbedoAt<double>(rho, light, c, phi, q);
     for (int channel = 0; channel < 3; ++channel) {
       if (a[channel] > best_value) {
         best_value = a[channel];
-        best = {phi, channel, rings, false};
+        best = {phi, channel, rings, false, false, {}};
       }
     }
   };
@@ -256,6 +261,77 @@ void EnergyBoundTables(const EnergyBoundPlan& plan, const Rho& rho, T* light,
   }
 }
 
+// The azimuth step of a crest refinement (RefineEnergyBoundPlan): the
+// azimuth search's finest step, 360 / 24 / 8 degrees.
+inline constexpr double kEnergyBoundCrestStep = 2.0 * kPi / 24.0 / 8.0;
+
+// `plan` with each entry that is derived (neither a copy nor held) moved
+// to the crest of its albedo near its azimuth: of the azimuths phi - d,
+// phi, phi + d (d = kEnergyBoundCrestStep) and the vertex of the parabola
+// through them (within d of phi), the one of the largest albedo of the
+// entry's channel; likewise each of its `others`, and the largest crest
+// becomes phi (the rest its others). A plan holds an azimuth fixed while
+// the parameters move the peak: evaluated through the refined plan at
+// every parameter point, a table entry follows the peak's crest, and its
+// derivative there is that of the peak itself (the derivative of a
+// maximum is that of the maximised function at its argument). A pure
+// function of the model and `plan`, so that a fit can reproduce the
+// tables it was solved through.
+template <typename Rho>
+EnergyBoundPlan RefineEnergyBoundPlan(const Rho& rho,
+                                      const EnergyBoundPlan& plan) {
+  using energy_bound_internal::AlbedoAt;
+  using energy_bound_internal::NodeCos;
+  using energy_bound_internal::Quadrature;
+  EnergyBoundPlan out = plan;
+  const int n = static_cast<int>(plan.light.size());
+  const double d = kEnergyBoundCrestStep;
+  for (int side = 0; side < 2; ++side) {
+    std::vector<EnergyBoundEntry>& entries = side == 0 ? out.light : out.view;
+    for (int k = 0; k < n; ++k) {
+      EnergyBoundEntry& e = entries[k];
+      if (e.copy || e.held) continue;
+      const double c = NodeCos(k, n);
+      const HemisphereQuadrature& q = Quadrature(e.rings);
+      auto albedo = [&](double phi) {
+        return AlbedoAt<double>(rho, side == 0, c, phi, q)[e.channel];
+      };
+      // The crest near phi0 and its albedo.
+      auto crest = [&](double phi0, double* value) {
+        const double a0 = albedo(phi0), am = albedo(phi0 - d),
+                     ap = albedo(phi0 + d);
+        double best_phi = phi0, best = a0;
+        if (am > best) best_phi = phi0 - d, best = am;
+        if (ap > best) best_phi = phi0 + d, best = ap;
+        const double curvature = am - 2.0 * a0 + ap;
+        if (curvature < 0.0) {
+          const double t = std::clamp(0.5 * (am - ap) / curvature, -1.0, 1.0);
+          const double phi = phi0 + t * d;
+          const double a = albedo(phi);
+          if (a > best) best_phi = phi, best = a;
+        }
+        *value = best;
+        return best_phi;
+      };
+      double best = 0.0;
+      std::vector<double> crests = {crest(e.phi, &best)};
+      for (double other : e.others) {
+        double value = 0.0;
+        const double phi = crest(other, &value);
+        if (value > best) {
+          best = value;
+          crests.insert(crests.begin(), phi);
+        } else {
+          crests.push_back(phi);
+        }
+      }
+      e.phi = crests.front();
+      e.others.assign(crests.begin() + 1, crests.end());
+    }
+  }
+  return out;
+}
+
 // Where the bound of a model given by rho(wi, wo) (a callable returning
 // glm::dvec3, the cosine-weighted value; every channel is bounded by the
 // largest) takes its entries: at each node the largest albedo over azimuth
@@ -264,7 +340,7 @@ void EnergyBoundTables(const EnergyBoundPlan& plan, const Rho& rho, T* light,
 // by the midpoint rule (models/albedo.h) over 16 rings; beyond 80 degrees,
 // where an albedo over 0.5 may be a thread's narrow peak along its axis,
 // over 32 rings (the satin's thread at 87 degrees: 16 rings 16 % low, 32
-// rings 1 %).
+// rings 1 %); then each entry on its crest (RefineEnergyBoundPlan).
 template <typename Rho>
 EnergyBoundPlan PlanEnergyBound(const Rho& rho, double phi0 = 0.0) {
   using energy_bound_internal::LargestAlbedo;
@@ -292,7 +368,7 @@ EnergyBoundPlan PlanEnergyBound(const Rho& rho, double phi0 = 0.0) {
       (light ? plan.light : plan.view)[k] = e;
     }
   }
-  return plan;
+  return RefineEnergyBoundPlan(rho, plan);  // on the crests
 }
 
 // The bound of rho (PlanEnergyBound): null when the model needs none
