@@ -10,6 +10,7 @@
 #include "io/image_stack.h"
 #include "io/input_error.h"
 #include "io/text_util.h"
+#include "models/bounded.h"
 
 namespace clothfit {
 
@@ -98,6 +99,10 @@ int RunSynth(int argc, char** argv) {
   args.Option("max-theta-deg", "DEG",
               "largest polar angle of random directions, (0, 90]", "90");
   args.Option("quantity", "Q", "brdf or cosine_weighted", "brdf");
+  args.Flag("energy-bound",
+            "thread, cloth: draw the bounded model, which conserves energy on "
+            "both sides (what fit --energy-bound fits; a file's own bound is "
+            "kept)");
   args.Option("gonio", "PATTERN",
               "virtual gonioreflectometer over woven micro-geometry: plain, "
               "satin or knit (instead of a model)");
@@ -123,8 +128,19 @@ int RunSynth(int argc, char** argv) {
   if (args.Has("gonio")) return RunGonio(args);
   SynthOptions options;
   options.quantity = ModelQuantityOption(args, "quantity");
-  const ParamFile model =
+  ParamFile model =
       LoadEvaluableModel(args, options.quantity, "option '--quantity'");
+  if (args.Has("energy-bound")) {
+    const auto* thread = std::get_if<ThreadParams>(&model.params);
+    const auto* cloth = std::get_if<ClothParams>(&model.params);
+    if (!thread && !cloth) {
+      args.Fail("--energy-bound is for the thread and cloth models");
+    }
+    // A file's own bound is the model's; else the bound of its values.
+    if (!(thread ? thread->energy_bound : cloth->energy_bound)) {
+      model.params = WithEnergyBound(model.params);
+    }
+  }
   const std::string out_path = args.Required("out");
   options.noise = args.GetDouble("noise");
   if (options.noise < 0.0 || options.noise > 1.0) {

@@ -604,6 +604,47 @@ TEST(CliTest, FitEnergyBoundWritesTheBoundedModelItFitted) {
                  {"--energy-bound"});
 }
 
+// synth --energy-bound draws the bounded model (what fit --energy-bound
+// fits): a preset's table is the bounded preset's values, below the
+// paper's model toward grazing (the linen's light side exceeds 1 there);
+// a model other than thread or cloth is refused.
+TEST(CliTest, SynthEnergyBoundDrawsTheBoundedModel) {
+  const fs::path dir = TestDir();
+  const std::string bounded = (dir / "B.csv").string();
+  const std::string paper = (dir / "P.csv").string();
+  for (const auto& [out, flag] :
+       {std::pair<std::string, bool>{bounded, true}, {paper, false}}) {
+    std::vector<std::string> args = {"synth",  "--preset", "linen_plain",
+                                     "--rows", "400",      "--seed",
+                                     "3",      "--out",    out};
+    if (flag) args.push_back("--energy-bound");
+    const RunResult r = RunClothfit(dir, args);
+    ASSERT_EQ(r.status, 0) << Describe(r);
+  }
+  ClothParams linen;
+  ASSERT_TRUE(GetPreset("linen_plain", &linen));
+  const ModelParams truth = WithEnergyBound(linen);
+  const MeasurementTable b = ReadTable(bounded).table;
+  const MeasurementTable p = ReadTable(paper).table;
+  ASSERT_EQ(b.rows.size(), p.rows.size());
+  int lower = 0;
+  for (size_t i = 0; i < b.rows.size(); ++i) {
+    const glm::dvec3 want =
+        Evaluate(truth, b.rows[i].wi, b.rows[i].wo, b.quantity);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(b.rows[i].value[c], want[c], 1e-9 * (1.0 + want[c])) << i;
+    }
+    EXPECT_LE(b.rows[i].value.x, p.rows[i].value.x * (1.0 + 1e-9)) << i;
+    if (b.rows[i].value.x < 0.99 * p.rows[i].value.x) ++lower;
+  }
+  EXPECT_GT(lower, 0);
+  WriteParamFile(ParamFile{SlabParams(), ""}, (dir / "slab.json").string());
+  ExpectBadInput(dir,
+                 {"synth", "--params", (dir / "slab.json").string(),
+                  "--energy-bound", "--out", (dir / "S.csv").string()},
+                 {"--energy-bound"});
+}
+
 TEST(CliTest, FitThreadRecoversParametersAndWritesFitObject) {
   const fs::path dir = DirWithThreadTable();
   const RunResult r = RunClothfit(
