@@ -240,6 +240,8 @@ ClothFitResult FitClothThrough(
   evaluator->table = &table;
   evaluator->weave = weave;
   evaluator->bound_factor = bound_factor;
+  evaluator->geometry_fixed = geometry_fixed;
+  evaluator->eta_fixed = eta_fixed;
   if (geometry_fixed && table.rows.size() <= options.held_sample_rows) {
     evaluator->samples.resize(table.rows.size());
     for (size_t i = 0; i < table.rows.size(); ++i) {
@@ -248,7 +250,6 @@ ClothFitResult FitClothThrough(
     }
   } else if (geometry_fixed) {
     evaluator->fixed_weave = std::make_shared<const ClothParams>(init);
-    evaluator->eta_fixed = eta_fixed;
   }
   ResidualBlocks blocks;
   for (int b = 0; b <= v.ClothBlock(); ++b) blocks.used.push_back(b);

@@ -165,9 +165,11 @@ struct ClothEvaluator {
   std::shared_ptr<const Weave> weave;
   std::vector<std::shared_ptr<const RowSamples>> samples;  // per row, or null
   // With the geometry fixed but the samples not held (more rows than
-  // ClothFitOptions::held_sample_rows): the weave and which etas are
-  // fixed, to compute them per row.
+  // ClothFitOptions::held_sample_rows): the weave, to compute them per
+  // row.
   std::shared_ptr<const ClothParams> fixed_weave;
+  // The geometry (rotation, offsets) fixed, and which etas are.
+  bool geometry_fixed = false;
   std::vector<bool> eta_fixed;
   // The rows' energy bound factors (fitting/energy_bound_fit_internal.h),
   // or null: the paper's model.
@@ -198,7 +200,11 @@ struct ClothEvaluator {
 
   // The paper's cloth at the blocks, rho(wi, wo) cosine-weighted without
   // the scale: what the energy bound is a quadrature of. In double with
-  // its sample frames computed once (models/prepared.h).
+  // its sample frames computed once (models/prepared.h); in Jets with the
+  // geometry fixed, each direction pair's tangent samples (and the fixed
+  // etas' Fresnel terms) in double and only the lobes in Jets, as the
+  // rows' (RowSamples), the same value: the quadratures' directions are
+  // fixed numbers.
   template <typename T>
   auto BoundRho(const T* const* blocks) const {
     if constexpr (std::is_same_v<T, double>) {
@@ -207,10 +213,18 @@ struct ClothEvaluator {
         return Rho(c, wi, wo);
       };
     } else {
-      return [c = ClothFromBlocks(*weave, blocks, true)](const glm::dvec3& wi,
-                                                         const glm::dvec3& wo) {
-        return Rho(c, wi, wo);
-      };
+      return
+          [c = ClothFromBlocks(*weave, blocks, !geometry_fixed),
+           geometry_fixed = geometry_fixed, weave = weave.get(),
+           eta_fixed = &eta_fixed](const glm::dvec3& wi, const glm::dvec3& wo) {
+            if (!geometry_fixed) return Rho(c, wi, wo);
+            thread_local TableRow row;
+            thread_local RowSamples samples;
+            row.wi = wi;
+            row.wo = wo;
+            FillRowSamples(weave->layout, *eta_fixed, row, &samples);
+            return ClothRhoFromSamples(c, samples, wi.z);
+          };
     }
   }
 };
