@@ -170,11 +170,18 @@ bool MergeEnergyBoundPlans(const MeasurementTable& table, const P& p,
       if (above && !idle) {
         // Another peak rose above the one the solve followed: the next
         // follows both (and the earlier ones), at most kEnergyBoundPeaks.
-        std::vector<double> peaks = {entries[k].phi};
-        peaks.insert(peaks.end(), entries[k].others.begin(),
-                     entries[k].others.end());
-        if (peaks.size() >= kEnergyBoundPeaks)
-          peaks.resize(kEnergyBoundPeaks - 1);
+        // (A peak within a crest step of the new one is that one.)
+        std::vector<double> peaks;
+        auto keep = [&](double phi) {
+          const double apart =
+              std::remainder(phi - fresh_entries[k].phi, 2.0 * kPi);
+          if (std::abs(apart) > kEnergyBoundCrestStep &&
+              peaks.size() + 1 < kEnergyBoundPeaks) {
+            peaks.push_back(phi);
+          }
+        };
+        keep(entries[k].phi);
+        for (double phi : entries[k].others) keep(phi);
         const bool same_channel =
             entries[k].channel == fresh_entries[k].channel;
         entries[k] = fresh_entries[k];
@@ -205,10 +212,9 @@ bool MergeEnergyBoundPlans(const MeasurementTable& table, const P& p,
 // max(1, scale), so above 1 a row's factor divides the scale out once the
 // row's albedo reaches 1, and above the largest such threshold over the
 // rows (max(1, scale) / the row's albedo), and at least 1, the scale
-// changes no row. A
-// solve would wander along it without end (the data brighter than the
-// bounded model can reflect). HUGE_VAL where some reflection row is not
-// bounded by the tables at all (albedo 0).
+// changes no row. A solve would wander along it without end (the data
+// brighter than the bounded model can reflect). HUGE_VAL where some
+// reflection row is not bounded by the tables at all (albedo 0).
 double EnergyBoundScaleCap(const MeasurementTable& table,
                            const EnergyBound& tables, double scale);
 
@@ -230,10 +236,10 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
 // search_factor, from the start search too, done through those fixed
 // factors of the rows (the first solve: the first fit's rows may not tell
 // a weak thread's parameters, nor its basin be that of every row); a
-// fitted scale stays at most scale_cap (EnergyBoundScaleCap at `from`). Returns
-// the last solve with its bound attached (the tables it was solved through),
-// its report the bound's effect, the iterations of all solves and the furnace
-// check.
+// fitted scale stays at most scale_cap (EnergyBoundScaleCap at `from`).
+// Returns the last solve with its bound attached (the tables it was solved
+// through), its report the bound's effect, the iterations of all solves and
+// the furnace check.
 template <typename P>
 FitResult<P> SettleEnergyBound(
     const MeasurementTable& table,
