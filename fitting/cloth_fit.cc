@@ -248,8 +248,6 @@ ClothFitResult FitClothThrough(
       evaluator->samples[i] = std::make_shared<const RowSamples>(
           ComputeRowSamples(init, eta_fixed, table.rows[i]));
     }
-  } else if (geometry_fixed) {
-    evaluator->fixed_weave = std::make_shared<const ClothParams>(init);
   }
   ResidualBlocks blocks;
   for (int b = 0; b <= v.ClothBlock(); ++b) blocks.used.push_back(b);

@@ -164,11 +164,9 @@ struct ClothEvaluator {
   const MeasurementTable* table;
   std::shared_ptr<const Weave> weave;
   std::vector<std::shared_ptr<const RowSamples>> samples;  // per row, or null
-  // With the geometry fixed but the samples not held (more rows than
-  // ClothFitOptions::held_sample_rows): the weave, to compute them per
-  // row.
-  std::shared_ptr<const ClothParams> fixed_weave;
-  // The geometry (rotation, offsets) fixed, and which etas are.
+  // The geometry (rotation, offsets) fixed, and which etas are: the
+  // tangent samples of the weave's layout, held per row (`samples`) or,
+  // for more rows than ClothFitOptions::held_sample_rows, computed per row.
   bool geometry_fixed = false;
   std::vector<bool> eta_fixed;
   // The rows' energy bound factors (fitting/energy_bound_fit_internal.h),
@@ -179,17 +177,12 @@ struct ClothEvaluator {
   Vec3<T> operator()(const T* const* blocks, size_t i) const {
     const TableRow& row = table->rows[i];
     const T factor(bound_factor ? (*bound_factor)[i] : 1.0);
-    const RowSamples* row_samples =
-        samples.empty() ? nullptr : samples[i].get();
-    if (!row_samples && fixed_weave) {
-      thread_local RowSamples scratch;
-      FillRowSamples(*fixed_weave, eta_fixed, row, &scratch);
-      row_samples = &scratch;
-    }
-    if (row_samples) {
+    if (geometry_fixed) {
+      const ClothParamsT<T> c = ClothFromBlocks(*weave, blocks, false);
       return ConvertQuantity(
-                 ClothRhoFromSamples(ClothFromBlocks(*weave, blocks, false),
-                                     *row_samples, row.wi.z),
+                 samples.empty()
+                     ? RhoFromSamplesNow(c, row)
+                     : ClothRhoFromSamples(c, *samples[i], row.wi.z),
                  Quantity::kCosineWeighted, table->quantity, row.wi.z) *
              factor;
     }
@@ -213,19 +206,25 @@ struct ClothEvaluator {
         return Rho(c, wi, wo);
       };
     } else {
-      return
-          [c = ClothFromBlocks(*weave, blocks, !geometry_fixed),
-           geometry_fixed = geometry_fixed, weave = weave.get(),
-           eta_fixed = &eta_fixed](const glm::dvec3& wi, const glm::dvec3& wo) {
-            if (!geometry_fixed) return Rho(c, wi, wo);
-            thread_local TableRow row;
-            thread_local RowSamples samples;
-            row.wi = wi;
-            row.wo = wo;
-            FillRowSamples(weave->layout, *eta_fixed, row, &samples);
-            return ClothRhoFromSamples(c, samples, wi.z);
-          };
+      return [c = ClothFromBlocks(*weave, blocks, !geometry_fixed), this](
+                 const glm::dvec3& wi, const glm::dvec3& wo) {
+        if (!geometry_fixed) return Rho(c, wi, wo);
+        thread_local TableRow row;
+        row.wi = wi;
+        row.wo = wo;
+        return RhoFromSamplesNow(c, row);
+      };
     }
+  }
+
+  // rho of c (its geometry the layout's, fixed) at the row's directions,
+  // from the row's tangent samples computed now.
+  template <typename T>
+  Vec3<T> RhoFromSamplesNow(const ClothParamsT<T>& c,
+                            const TableRow& row) const {
+    thread_local RowSamples scratch;
+    FillRowSamples(weave->layout, eta_fixed, row, &scratch);
+    return ClothRhoFromSamples(c, scratch, row.wi.z);
   }
 };
 
