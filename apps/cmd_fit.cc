@@ -340,7 +340,11 @@ int RunFit(int argc, char** argv) {
             "(reported as 'scale')");
   args.Flag("energy-bound",
             "thread, cloth: fit and write the bounded model, which conserves "
-            "energy on both sides (docs/fitting.md)");
+            "energy on both sides (the default; docs/fitting.md)");
+  args.Flag("paper-model",
+            "thread, cloth, auto: fit and write the paper's model instead of "
+            "the bounded one (it does not conserve energy toward grazing "
+            "directions)");
   args.Flag("per-channel-tau", "slab: one tau per channel (r, g, b)");
   args.Flag("skip-invalid", "drop invalid table rows (reports how many)");
   args.Option("folds", "K",
@@ -353,8 +357,16 @@ int RunFit(int argc, char** argv) {
       args.Fail(std::string("--") + cloth_only + " is for the cloth model");
     }
   }
-  if (args.Has("energy-bound") && model != "thread" && model != "cloth") {
-    args.Fail("--energy-bound is for the thread and cloth models");
+  if (args.Has("energy-bound") && model != "thread" && model != "cloth" &&
+      model != "auto") {
+    args.Fail("--energy-bound is for the thread, cloth and auto models");
+  }
+  if (args.Has("paper-model") && model != "thread" && model != "cloth" &&
+      model != "auto") {
+    args.Fail("--paper-model is for the thread, cloth and auto models");
+  }
+  if (args.Has("paper-model") && args.Has("energy-bound")) {
+    args.Fail("--paper-model and --energy-bound exclude each other");
   }
   CheckWritable(args.Required("out"));  // before the fit, not after
   const SolverOptions solver = ReadSolverOptions(args, true);
@@ -386,7 +398,7 @@ int RunFit(int argc, char** argv) {
     options.fix = fix;
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
-    options.energy_bound = args.Has("energy-bound");
+    options.energy_bound = !args.Has("paper-model");
     if (starts > 0) options.solve_starts = starts;
     if (args.Has("preset"))
       args.Fail("--preset gives cloth parameters; use --init");
@@ -424,7 +436,7 @@ int RunFit(int argc, char** argv) {
     options.fix = fix;
     options.free_only = free_only;
     options.fit_scale = args.Has("fit-scale");
-    options.energy_bound = args.Has("energy-bound");
+    options.energy_bound = !args.Has("paper-model");
     options.also_free = ListOption(args, "also-free");
     if (args.Has("design-points")) {
       const long n = args.GetInt("design-points");

@@ -57,6 +57,7 @@ int RunFitAuto(const CommandArgs& args, const SolverOptions& solver) {
   FabricSelectOptions options;
   options.solver = solver;
   options.fit_scale = args.Has("fit-scale");
+  options.energy_bound = !args.Has("paper-model");
   if (args.Has("folds")) {
     const long k = args.GetInt("folds");
     if (k < 2 || k > 100) args.Fail("option '--folds': must be in [2, 100]");

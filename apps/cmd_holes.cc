@@ -353,7 +353,7 @@ int RunTruth(int argc, char** argv) {
     // Transmittance lies in [0, 1]: sigma is floored at 1 % of full scale
     // so that views with no light left keep a finite weight.
     Random random(static_cast<uint64_t>(args.GetInt("seed")));
-    AddMultiplicativeNoise(noise, 0.01, &random, &table);
+    AddMultiplicativeNoise(noise, glm::dvec3(0.01), &random, &table);
   }
   WriteTable(table, out);
   return 0;

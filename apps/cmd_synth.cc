@@ -101,8 +101,11 @@ int RunSynth(int argc, char** argv) {
   args.Option("quantity", "Q", "brdf or cosine_weighted", "brdf");
   args.Flag("energy-bound",
             "thread, cloth: draw the bounded model, which conserves energy on "
-            "both sides (what fit --energy-bound fits; a file's own bound is "
+            "both sides (the default, what fit fits; a file's own bound is "
             "kept)");
+  args.Flag("paper-model",
+            "thread, cloth: draw the paper's model instead (what fit "
+            "--paper-model fits; a file's bound is dropped)");
   args.Option("gonio", "PATTERN",
               "virtual gonioreflectometer over woven micro-geometry: plain, "
               "satin or knit (instead of a model)");
@@ -130,14 +133,25 @@ int RunSynth(int argc, char** argv) {
   options.quantity = ModelQuantityOption(args, "quantity");
   ParamFile model =
       LoadEvaluableModel(args, options.quantity, "option '--quantity'");
-  if (args.Has("energy-bound")) {
-    const auto* thread = std::get_if<ThreadParams>(&model.params);
-    const auto* cloth = std::get_if<ClothParams>(&model.params);
-    if (!thread && !cloth) {
-      args.Fail("--energy-bound is for the thread and cloth models");
+  {
+    auto* thread = std::get_if<ThreadParams>(&model.params);
+    auto* cloth = std::get_if<ClothParams>(&model.params);
+    for (const char* flag : {"energy-bound", "paper-model"}) {
+      if (args.Has(flag) && !thread && !cloth) {
+        args.Fail(std::string("--") + flag +
+                  " is for the thread and cloth models");
+      }
     }
-    // A file's own bound is the model's; else the bound of its values.
-    if (!(thread ? thread->energy_bound : cloth->energy_bound)) {
+    if (args.Has("energy-bound") && args.Has("paper-model")) {
+      args.Fail("--paper-model and --energy-bound exclude each other");
+    }
+    if (args.Has("paper-model")) {
+      if (thread) thread->energy_bound = nullptr;
+      if (cloth) cloth->energy_bound = nullptr;
+    } else if ((thread && !thread->energy_bound) ||
+               (cloth && !cloth->energy_bound)) {
+      // What fit fits by default: a file's own bound is the model's; else
+      // the bound of its values.
       model.params = WithEnergyBound(model.params);
     }
   }

@@ -71,7 +71,7 @@ std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
       const std::string config = "starts=" + std::to_string(s) +
                                  " max_iterations=" + std::to_string(cap);
       Say(o, "thread: " + config);
-      ThreadFitOptions fit;
+      ThreadFitOptions fit = PaperThreadFit();
       fit.solve_starts = s;
       fit.solver.max_iterations = cap;
       BenchRow row = Measure(o, [&]() { return run(fit); });
@@ -86,7 +86,7 @@ std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
   SweepLinearSolvers(
       o, "thread",
       [&](LinearSolver solver) {
-        ThreadFitOptions fit;
+        ThreadFitOptions fit = PaperThreadFit();
         fit.solver.linear_solver = solver;
         return run(fit);
       },
@@ -94,7 +94,7 @@ std::string BenchThread(const BenchOptions& o, std::vector<BenchRow>* rows) {
   // The quick bench keeps it to the slab's peer (the cheapest).
   if (o.quick) return "";
   return RunModelPeer(o, "thread", problem, truth, ThreadParams(),
-                      FitThread(table, ThreadFitOptions()).report, rows);
+                      FitThread(table, PaperThreadFit()).report, rows);
 }
 
 // Cloth: the satin from the generic start, 2 % noise; knobs: the start
@@ -128,7 +128,7 @@ std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
                                (k.multi_start ? "on" : "off") +
                                " starts=" + std::to_string(k.starts);
     Say(o, "cloth: " + config);
-    ClothFitOptions fit;
+    ClothFitOptions fit = PaperClothFit();
     fit.multi_start = k.multi_start;
     fit.solve_starts = k.starts;
     BenchRow row = Measure(o, [&]() { return run(fit); });
@@ -143,7 +143,7 @@ std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
   SweepLinearSolvers(
       o, "cloth",
       [&](LinearSolver solver) {
-        ClothFitOptions fit;
+        ClothFitOptions fit = PaperClothFit();
         fit.solver.linear_solver = solver;
         return run(fit);
       },
@@ -166,7 +166,7 @@ std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
                                   : std::to_string(t));
     Say(o, "cloth: " + config);
     BenchRow row = Measure(o, [&]() {
-      const ClothFitResult r = FitCloth(table, resampled, ClothFitOptions());
+      const ClothFitResult r = FitCloth(table, resampled, PaperClothFit());
       Outcome out;
       out.success = r.report.usable && r.report.converged;
       out.value_error = HeldOutError(r.params, truth, held_out, table.quantity);
@@ -182,7 +182,7 @@ std::string BenchCloth(const BenchOptions& o, std::vector<BenchRow>* rows) {
   // The cloth peer takes seconds even on the quick bench's table.
   if (o.quick) return "";
   return RunModelPeer(o, "cloth", problem, truth, start,
-                      FitCloth(table, start, ClothFitOptions()).report, rows);
+                      FitCloth(table, start, PaperClothFit()).report, rows);
 }
 
 // Slab: tau 0.05, albedo (0.4, 0.3, 0.2) (inside the single-scattering

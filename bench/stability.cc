@@ -244,12 +244,14 @@ std::vector<StabilityRow> RunStability(const BenchOptions& options) {
               t.params = FarThread(t.params, factor);
             }
             ClothFitOptions fit;
+            fit.energy_bound = false;  // the table is the paper's model
             fit.solver.loss = fitter.loss;
             const ClothFitResult r = FitCloth(trial.table, start, fit);
             ok = r.report.usable && r.report.converged;
             error = Error(r.params, satin, trial.held_out);
           } else {
             ThreadFitOptions fit;
+            fit.energy_bound = false;  // the table is the paper's model
             fit.solver.loss = fitter.loss;
             fit.init = FarThread(thread, factor);
             const ThreadFitResult r = FitThread(trial.table, fit);

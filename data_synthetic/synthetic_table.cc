@@ -103,12 +103,22 @@ void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
     row.sigma = glm::dvec3(1.0);
   }
   if (options.noise > 0.0) {
-    AddMultiplicativeNoise(options.noise, 0.0, random, table);
+    // The floor of the fits' default relative noise model (io/table.h): a
+    // value of 0 (the bounded model at the horizon) gets a finite sigma.
+    glm::dvec3 floor(0.0);
+    std::vector<double> values(table->rows.size());
+    for (int c = 0; c < 3; ++c) {
+      for (size_t i = 0; i < values.size(); ++i) {
+        values[i] = std::abs(table->rows[i].value[c]);
+      }
+      floor[c] = RelativeNoiseFloor(values);
+    }
+    AddMultiplicativeNoise(options.noise, floor, random, table);
   }
 }
 
-void AddMultiplicativeNoise(double noise, double value_floor, Random* random,
-                            MeasurementTable* table) {
+void AddMultiplicativeNoise(double noise, const glm::dvec3& value_floor,
+                            Random* random, MeasurementTable* table) {
   table->has_sigma = true;
   for (TableRow& row : table->rows) {
     for (int c = 0; c < 3; ++c) {
@@ -119,7 +129,7 @@ void AddMultiplicativeNoise(double noise, double value_floor, Random* random,
       }
       const double clean = row.value[c];
       row.sigma[c] =
-          std::max(noise * std::max(std::abs(clean), value_floor), 1e-12);
+          std::max(noise * std::max(std::abs(clean), value_floor[c]), 1e-12);
       row.value[c] = clean * (1.0 + noise * random->Normal());
     }
   }

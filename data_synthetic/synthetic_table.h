@@ -57,10 +57,11 @@ struct SynthOptions {
 // Multiplicative Gaussian noise on a table's values: each channel below
 // table->channels is multiplied by 1 + noise N(0, 1) (the others copy
 // channel 0), and sigma = max(noise max(|value|, value_floor), 1e-12) from
-// the clean value (value_floor keeps a finite weight where the clean value
-// is 0, e.g. 0.01 of a transmittance's full scale); has_sigma. noise > 0.
-void AddMultiplicativeNoise(double noise, double value_floor, Random* random,
-                            MeasurementTable* table);
+// the clean value, value_floor per channel (it keeps a finite weight where
+// the clean value is 0, e.g. 0.01 of a transmittance's full scale);
+// has_sigma. noise > 0.
+void AddMultiplicativeNoise(double noise, const glm::dvec3& value_floor,
+                            Random* random, MeasurementTable* table);
 
 // Fills the rows' values with the model's and adds noise. When noise > 0
 // the rows get sigma = noise * |clean value| (at least 1e-12) and the table

@@ -113,6 +113,7 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
   held.solve_starts = 1;
   held.shared_albedo = options.shared_albedo;
   held.fit_scale = options.fit_scale;
+  held.energy_bound = false;  // the paper's model at the start's geometry
   // A start, not a result: the energy check (a quadrature, about as long as
   // the held solve) waits for the solves from it.
   held.conserve_energy = false;

@@ -71,12 +71,13 @@ struct ClothFitOptions {
   // down until it is 1 there, and the fit says so (not converged). Off
   // only for fits that are scored, not written (held-out folds).
   bool conserve_energy = true;
-  // Fit the bounded model instead (fitting/energy_bound_fit_internal.h):
-  // the result carries its energy bound (models/bounded.h) and conserves
-  // energy on both sides, with no scaling. Off (the default for now): the
-  // paper's model, or, when the init carries a bound, that bound held
+  // Fit the bounded model (fitting/energy_bound_fit_internal.h), the
+  // default: the result carries its energy bound (models/bounded.h) and
+  // conserves energy on both sides, with no scaling. Off: the paper's
+  // model (Sadeghi et al. 2013), which does not conserve energy under
+  // grazing light, or, when the init carries a bound, that bound held
   // fixed (held-out folds of a bounded fit).
-  bool energy_bound = false;
+  bool energy_bound = true;
 };
 
 using ClothFitResult = FitResult<ClothParams>;

@@ -71,6 +71,17 @@ bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound) {
   return true;
 }
 
+bool RowsInHorizonFade(const MeasurementTable& table) {
+  for (const TableRow& row : table.rows) {
+    const double ci = row.wi.z, co = row.wo.z;
+    if (ci > 0.0 && co > 0.0 &&
+        (ci < kEnergyBoundFadeCos || co < kEnergyBoundFadeCos)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,
                        EnergyBoundPlan* plan) {
   const int n = static_cast<int>(plan->light.size());

@@ -71,6 +71,11 @@ std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
 // least 1 - kEnergyBoundSettled.
 bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound);
 
+// Whether some row of `table` lies in the bound's horizon fade (light and
+// view above the surface, one of them within 3 degrees of the horizon:
+// models/energy_bound.h), where any bound lowers the model.
+bool RowsInHorizonFade(const MeasurementTable& table);
+
 // The start of a bounded fit: the paper's model fitted to some rows, with
 // its bound and the plan of that bound's entries (found once: the azimuth
 // search is most of a bound's cost).
@@ -109,12 +114,17 @@ BoundedStart<P> ChooseBoundedStart(
   // Where the fit of every row converged and its bound lowers none of
   // them, that fit is the bounded model's (SettleEnergyBound): no other
   // start is needed. (One stopped at a search limit may be a poor basin,
-  // which the rows within 60 degrees avoid: the thread test's table.)
+  // which the rows within 60 degrees avoid: the thread test's table.
+  // Neither where rows lie in the horizon fade: there the paper's model,
+  // fitted to every row, is pulled toward values a bounded surface fades
+  // out, and on a synth table of the bounded satin thread it converged in
+  // a basin of 1000x the cost, whose model needs no bound.)
   std::optional<BoundedStart<P>> every;
   if (every_fit.report.usable) {
     const bool converged = every_fit.report.converged;
     every = bounded(std::move(every_fit));
-    if (converged && LowersNoRow(table, every->bound.get())) {
+    if (converged && LowersNoRow(table, every->bound.get()) &&
+        !RowsInHorizonFade(table)) {
       return std::move(*every);
     }
   }

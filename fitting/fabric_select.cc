@@ -63,6 +63,8 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
          o.fix = held;
          o.solver = solver;
          o.fit_scale = options.fit_scale;
+         // A fold holds the whole table's bound (scored, not written).
+         o.energy_bound = options.energy_bound && !warm;
          const ThreadFitResult r = FitThread(t, o);
          return Fitted{r.params, r.report};
        }});
@@ -114,6 +116,8 @@ std::vector<Candidate> Candidates(const FabricSelectOptions& options) {
            o.solver = solver;
            o.fit_scale = options.fit_scale;
            o.also_free = v.also_free;
+           // A fold holds the whole table's bound (scored, not written).
+           o.energy_bound = options.energy_bound && !warm;
            o.design_points = v.design_points;
            if (!v.also_free.empty()) o.solve_starts = v.solve_starts;
            if (warm) {  // the whole table's solution, solved again

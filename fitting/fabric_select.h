@@ -38,6 +38,9 @@ struct FabricSelectOptions {
   // Data on an arbitrary scale: the thread and cloth fits fit a factor on
   // the model (a Lafortune model's coefficients carry any scale).
   bool fit_scale = false;
+  // Thread and cloth candidates: the bounded model (ClothFitOptions::
+  // energy_bound); the folds hold the whole table's bound.
+  bool energy_bound = true;
   int folds = 5;  // k of the k-fold over rows, >= 2
   // Told "candidate i of n: NAME" as the fits go.
   std::function<void(const std::string&)> progress;

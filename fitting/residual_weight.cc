@@ -58,22 +58,8 @@ Weighting::Weighting(
     floor_ = glm::dvec3(noise.floor);
     return;
   }
-  // The default floor: 1 % of the channel's median |value| (of its largest
-  // where half the values are 0; 1 where all are). A reflectance table
-  // spans decades (a thread's highlight is 1,000x its median), so a floor
-  // tied to the largest value would weigh most rows alike.
-  for (int c = 0; c < 3; ++c) {
-    std::vector<double> values = channel_values(c);
-    double typical = 0.0;
-    if (!values.empty()) {
-      auto middle = values.begin() + values.size() / 2;
-      std::nth_element(values.begin(), middle, values.end());
-      typical = *middle;
-      if (!(typical > 0.0))
-        typical = *std::max_element(values.begin(), values.end());
-    }
-    floor_[c] = typical > 0.0 ? 0.01 * typical : 1.0;
-  }
+  // The default floor (io/table.h).
+  for (int c = 0; c < 3; ++c) floor_[c] = RelativeNoiseFloor(channel_values(c));
 }
 
 glm::dvec3 Weighting::RelativeSigma(const glm::dvec3& v) const {

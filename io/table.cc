@@ -364,4 +364,17 @@ void AnglesFromDirection(const glm::dvec3& w, double* theta, double* phi) {
   *phi = std::atan2(w.y, w.x);
 }
 
+double RelativeNoiseFloor(std::vector<double> magnitudes) {
+  double typical = 0.0;
+  if (!magnitudes.empty()) {
+    auto middle = magnitudes.begin() + magnitudes.size() / 2;
+    std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+    typical = *middle;
+    if (!(typical > 0.0)) {
+      typical = *std::max_element(magnitudes.begin(), magnitudes.end());
+    }
+  }
+  return typical > 0.0 ? 0.01 * typical : 1.0;
+}
+
 }  // namespace clothfit

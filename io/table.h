@@ -139,4 +139,13 @@ std::string FormatTable(const MeasurementTable& table);
 glm::dvec3 DirectionFromAngles(double theta, double phi);
 void AnglesFromDirection(const glm::dvec3& w, double* theta, double* phi);
 
+// The floor of relative noise for a channel whose values have these
+// magnitudes: 1 % of their median (of their largest where half are 0; 1
+// where all are). A reflectance table spans decades (a thread's highlight
+// is 1,000x its median), so a floor tied to the largest value would weigh
+// most rows alike. The fits' default relative noise model uses it
+// (fitting/residual_weight.h), and synth's noisy tables, so that their
+// sigma is what the default fit would weigh a row by.
+double RelativeNoiseFloor(std::vector<double> magnitudes);
+
 }  // namespace clothfit

@@ -245,7 +245,8 @@ TEST(CliTest, SynthWithoutNoiseMatchesLibrary) {
   EXPECT_EQ(table.quantity, Quantity::kBrdf);
   EXPECT_EQ(table.channels, 3);
   EXPECT_FALSE(table.has_sigma);
-  const ClothParams preset = Preset("silk_shot");
+  // The bounded preset, which synth draws by default.
+  const ModelParams preset = WithEnergyBound(Preset("silk_shot"));
   int nonzero = 0;
   for (size_t i = 0; i < table.rows.size(); ++i) {
     const TableRow& row = table.rows[i];
@@ -298,8 +299,19 @@ TEST(CliTest, SynthNoiseIsAboutTheRequestedLevel) {
             std::string::npos);
   ASSERT_EQ(noisy.rows.size(), 300u);
   ASSERT_EQ(clean.rows.size(), noisy.rows.size());
+  // The sigma floor: 1 % of the channel's median clean value (the fits'
+  // default relative noise floor; a value of 0 keeps a finite sigma).
+  glm::dvec3 floor(0.0);
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> v;
+    for (const TableRow& row : clean.rows) v.push_back(std::abs(row.value[c]));
+    std::sort(v.begin(), v.end());
+    floor[c] = 0.01 * v[v.size() / 2];
+    EXPECT_GT(floor[c], 0.0);
+  }
   double sum2 = 0.0;
   int count = 0;
+  int floored = 0;
   for (size_t i = 0; i < noisy.rows.size(); ++i) {
     const TableRow& a = clean.rows[i];
     const TableRow& b = noisy.rows[i];
@@ -309,17 +321,23 @@ TEST(CliTest, SynthNoiseIsAboutTheRequestedLevel) {
       ASSERT_EQ(a.wo[c], b.wo[c]) << i;
     }
     for (int c = 0; c < 3; ++c) {
-      if (a.value[c] == 0.0) continue;
+      if (a.value[c] == 0.0) {
+        EXPECT_EQ(b.value[c], 0.0) << i;
+        EXPECT_NEAR(b.sigma[c], 0.02 * floor[c], 1e-12 * floor[c]) << i;
+        continue;
+      }
       const double deviation = b.value[c] / a.value[c] - 1.0;
       sum2 += deviation * deviation;
       ++count;
-      // sigma = noise * |clean value|, at least 1e-12
+      // sigma = noise * max(|clean value|, floor)
       // (data_synthetic/synthetic_table.h).
-      const double sigma = std::max(0.02 * std::abs(a.value[c]), 1e-12);
+      const double sigma = 0.02 * std::max(std::abs(a.value[c]), floor[c]);
+      floored += std::abs(a.value[c]) < floor[c];
       EXPECT_NEAR(b.sigma[c], sigma, 1e-12 * sigma) << i;
     }
   }
   ASSERT_GT(count, 600);
+  EXPECT_LT(floored, count / 10);
   const double rms = std::sqrt(sum2 / count);
   EXPECT_GE(rms, 0.01);
   EXPECT_LE(rms, 0.03);
@@ -559,10 +577,12 @@ fs::path DirWithThreadTable() {
   return dir;
 }
 
-// fit --energy-bound: a table drawn from a bounded thread (a parameter file
-// with its energy_bound) is fitted by the bounded model, the written file
-// carries its bound, and eval of that file reproduces the data the fit saw
-// (1 % noise). --energy-bound is refused for other models.
+// fit, by default (--energy-bound): a table drawn from a bounded thread (a
+// parameter file with its energy_bound) is fitted by the bounded model, the
+// written file carries its bound, and eval of that file reproduces the
+// data the fit saw (1 % noise). --paper-model writes the paper's model (no
+// bound). --energy-bound and --paper-model are refused for other models,
+// and together.
 TEST(CliTest, FitEnergyBoundWritesTheBoundedModelItFitted) {
   const fs::path dir = TestDir();
   ThreadParams truth;
@@ -581,8 +601,8 @@ TEST(CliTest, FitEnergyBoundWritesTheBoundedModelItFitted) {
                 .status,
             0);
   const std::string out = (dir / "fit.json").string();
-  const RunResult r = RunClothfit(dir, {"fit", "--model", "thread", "--data",
-                                        data, "--energy-bound", "--out", out});
+  const RunResult r = RunClothfit(
+      dir, {"fit", "--model", "thread", "--data", data, "--out", out});
   ASSERT_EQ(r.status, 0) << Describe(r);
   EXPECT_NE(r.out.find("energy bound: lowers"), std::string::npos) << r.out;
   const ThreadParams fit = std::get<ThreadParams>(ReadParamFile(out).params);
@@ -602,42 +622,73 @@ TEST(CliTest, FitEnergyBoundWritesTheBoundedModelItFitted) {
                  {"fit", "--model", "slab", "--data", data, "--energy-bound",
                   "--out", (dir / "slab.json").string()},
                  {"--energy-bound"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "lafortune", "--data", data,
+                  "--paper-model", "--out", (dir / "l.json").string()},
+                 {"--paper-model"});
+  ExpectBadInput(dir,
+                 {"fit", "--model", "thread", "--data", data, "--paper-model",
+                  "--energy-bound", "--out", (dir / "t.json").string()},
+                 {"--paper-model"});
+  const std::string paper = (dir / "paper.json").string();
+  const RunResult p = RunClothfit(dir, {"fit", "--model", "thread", "--data",
+                                        data, "--paper-model", "--out", paper});
+  ASSERT_LE(p.status, 1) << Describe(p);
+  EXPECT_EQ(p.out.find("energy bound:"), std::string::npos) << p.out;
+  EXPECT_EQ(std::get<ThreadParams>(ReadParamFile(paper).params).energy_bound,
+            nullptr);
 }
 
-// synth --energy-bound draws the bounded model (what fit --energy-bound
-// fits): a preset's table is the bounded preset's values, below the
-// paper's model toward grazing (the linen's light side exceeds 1 there);
-// a model other than thread or cloth is refused.
+// synth draws the bounded model by default (--energy-bound; what fit fits
+// by default): a preset's table is the bounded preset's values, below the
+// paper's model (--paper-model) toward grazing (the linen's light side
+// exceeds 1 there); a model other than thread or cloth is refused, and
+// the two flags together.
 TEST(CliTest, SynthEnergyBoundDrawsTheBoundedModel) {
   const fs::path dir = TestDir();
+  const std::string plain = (dir / "D.csv").string();
   const std::string bounded = (dir / "B.csv").string();
   const std::string paper = (dir / "P.csv").string();
   for (const auto& [out, flag] :
-       {std::pair<std::string, bool>{bounded, true}, {paper, false}}) {
+       {std::pair<std::string, std::string>{plain, ""},
+        {bounded, "--energy-bound"},
+        {paper, "--paper-model"}}) {
     std::vector<std::string> args = {"synth",  "--preset", "linen_plain",
                                      "--rows", "400",      "--seed",
                                      "3",      "--out",    out};
-    if (flag) args.push_back("--energy-bound");
+    if (!flag.empty()) args.push_back(flag);
     const RunResult r = RunClothfit(dir, args);
     ASSERT_EQ(r.status, 0) << Describe(r);
   }
   ClothParams linen;
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const ModelParams truth = WithEnergyBound(linen);
+  const MeasurementTable d = ReadTable(plain).table;
   const MeasurementTable b = ReadTable(bounded).table;
   const MeasurementTable p = ReadTable(paper).table;
   ASSERT_EQ(b.rows.size(), p.rows.size());
+  ASSERT_EQ(d.rows.size(), p.rows.size());
   int lower = 0;
   for (size_t i = 0; i < b.rows.size(); ++i) {
     const glm::dvec3 want =
         Evaluate(truth, b.rows[i].wi, b.rows[i].wo, b.quantity);
+    const glm::dvec3 want_paper =
+        Evaluate(ModelParams(linen), p.rows[i].wi, p.rows[i].wo, p.quantity);
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(b.rows[i].value[c], want[c], 1e-9 * (1.0 + want[c])) << i;
+      EXPECT_EQ(d.rows[i].value[c], b.rows[i].value[c]) << i;
+      EXPECT_NEAR(p.rows[i].value[c], want_paper[c],
+                  1e-9 * (1.0 + want_paper[c]))
+          << i;
     }
     EXPECT_LE(b.rows[i].value.x, p.rows[i].value.x * (1.0 + 1e-9)) << i;
     if (b.rows[i].value.x < 0.99 * p.rows[i].value.x) ++lower;
   }
   EXPECT_GT(lower, 0);
+  ExpectBadInput(dir,
+                 {"synth", "--preset", "linen_plain", "--energy-bound",
+                  "--paper-model", "--out", (dir / "X.csv").string()},
+                 {"--paper-model"});
   WriteParamFile(ParamFile{SlabParams(), ""}, (dir / "slab.json").string());
   ExpectBadInput(dir,
                  {"synth", "--params", (dir / "slab.json").string(),

@@ -20,7 +20,7 @@ TEST_P(ClothFitSamples, ComputedPerRowGiveTheHeldSamplesFit) {
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const MeasurementTable table =
       testing_util::NoisyTable(linen, 0.01, 20261206, 300);
-  ClothFitOptions held;
+  ClothFitOptions held = testing_util::PaperModel<ClothFitOptions>();
   held.multi_start = false;  // one solve from the generic start
   if (GetParam()) held.also_free = {"eta"};
   ClothFitOptions computed = held;

@@ -35,8 +35,11 @@ constexpr uint64_t kSeed = 20130702;
 
 // The options every fit here uses, the same for every preset: the
 // documented defaults (multi-start over the width grid, solve_starts as
-// ClothFitOptions sets it), i.e. what `clothfit fit` does without options.
-ClothFitOptions DefaultOptions() { return ClothFitOptions(); }
+// ClothFitOptions sets it) but for the bound: the tables are the paper's
+// model, which `clothfit fit --paper-model` fits.
+ClothFitOptions DefaultOptions() {
+  return testing_util::PaperModel<ClothFitOptions>();
+}
 
 ClothParams Preset(const std::string& name) {
   ClothParams cloth;

@@ -52,7 +52,7 @@ TEST(ClothFreedoms, RotationOffsetsAndDiffuseAreRecoveredFromTheGenericStart) {
   for (size_t j = 0; j < 2; ++j) {
     start.threads[j].coverage = truth.threads[j].coverage;  // fixed
   }
-  ClothFitOptions options;
+  ClothFitOptions options = testing_util::PaperModel<ClothFitOptions>();
   options.also_free = {"rotation_deg", "offsets_deg", "diffuse"};
   options.solve_starts = 8;
   const ClothFitResult r = FitCloth(table, start, options);
@@ -107,7 +107,8 @@ TEST(ClothFreedoms, TheDefaultIsThePapersModel) {
   const ClothParams truth = Linen();
   const MeasurementTable table = testing_util::NoisyTable(truth, 0.0, 7, 200);
   const ClothFitResult r =
-      FitCloth(table, GenericClothStart(truth), ClothFitOptions());
+      FitCloth(table, GenericClothStart(truth),
+               testing_util::PaperModel<ClothFitOptions>());
   for (const char* name :
        {"rotation_deg", "diffuse_r", "threads[0].offsets_deg[0]",
         "threads[1].offsets_deg[1]"}) {
@@ -121,7 +122,7 @@ TEST(ClothFreedoms, TheDefaultIsThePapersModel) {
 TEST(ClothFreedoms, NamesFreeTheirEntriesAndConflictsAreRefused) {
   const ClothParams truth = Linen();
   const MeasurementTable table = testing_util::NoisyTable(truth, 0.0, 7, 200);
-  ClothFitOptions options;
+  ClothFitOptions options = testing_util::PaperModel<ClothFitOptions>();
   options.also_free = {"threads[1].offsets_deg"};
   options.design_points = 4;
   options.solve_starts = 1;

@@ -32,13 +32,18 @@ bool StartsWith(const std::string& s, const std::string& prefix) {
 
 // A plain-weave cloth with 2 % noise: a cloth candidate with the plain
 // weave predicts the held-out rows best, at the noise level, far better
-// than generic lobes.
+// than generic lobes. The paper's model (a table of it, fitted so): the
+// bounded one, the default, fits the bounded linen's table the same way
+// in 8 minutes instead of 40 s (its free weaves' whole-table fits);
+// CuretFits.ClothFoldsStayInTheirBasinOnRugB selects with the default.
 TEST(FabricSelect, PlainWeaveClothIsChosenForAPlainWeaveTable) {
   ClothParams linen;
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const MeasurementTable table =
       testing_util::NoisyTable(linen, 0.02, 20261202, 300);
-  const FabricSelection s = SelectFabricModel(table, FabricSelectOptions());
+  FabricSelectOptions options;
+  options.energy_bound = false;
+  const FabricSelection s = SelectFabricModel(table, options);
   ASSERT_GE(s.selection.chosen, 0);
   const CandidateReport& chosen = s.selection.candidates[s.selection.chosen];
   EXPECT_TRUE(StartsWith(chosen.description, "cloth plain"))
@@ -49,7 +54,8 @@ TEST(FabricSelect, PlainWeaveClothIsChosenForAPlainWeaveTable) {
   const CandidateReport& lobes =
       Candidate(s.selection, "lafortune 2 lobe(s), no lookup table");
   EXPECT_GT(lobes.heldout_relative_rms, 2.0 * chosen.heldout_relative_rms);
-  EXPECT_TRUE(std::holds_alternative<ClothParams>(s.params));
+  ASSERT_TRUE(std::holds_alternative<ClothParams>(s.params));
+  EXPECT_EQ(std::get<ClothParams>(s.params).energy_bound, nullptr);
   for (const CandidateReport& c : s.selection.candidates) {
     EXPECT_GE(c.seconds, 0.0) << c.description;
     EXPECT_GT(c.free_parameters, 0) << c.description;

@@ -1,6 +1,8 @@
 // Helpers shared by the fit tests.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -8,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "data_synthetic/synthetic_table.h"
+#include "fitting/cloth_fit.h"
 #include "fitting/fit_result.h"
+#include "fitting/thread_fit.h"
 #include "models/lafortune.h"
 
 namespace clothfit {
@@ -30,6 +32,17 @@ inline const ParameterReport& Param(const FitReport& report,
 
 // A synthetic table of `rows` random direction pairs with multiplicative
 // noise (and sigma when noise > 0).
+// Thread or cloth fit options that fit the paper's model (Sadeghi et al.
+// 2013) instead of the default bounded one: for tables drawn from the
+// paper's model (a NoisyTable of parameters without a bound), whose rows
+// toward grazing the bounded model does not reproduce.
+template <typename Options>
+Options PaperModel() {
+  Options o;
+  o.energy_bound = false;
+  return o;
+}
+
 inline MeasurementTable NoisyTable(const ModelParams& truth, double noise,
                                    uint64_t seed, int rows) {
   DirectionSampling sampling;

@@ -64,7 +64,7 @@ TEST(LinearSolver, ThreadFitsRecoverTheTruthWithEverySolver) {
   std::vector<double> want(FlatSize(truth));
   ToArray(truth, want.data());
   for (LinearSolver s : AllLinearSolvers()) {
-    ThreadFitOptions options;
+    ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
     options.solver.linear_solver = s;
     const ThreadFitResult r = FitThread(table, options);
     EXPECT_TRUE(r.report.converged) << LinearSolverName(s) << r.report.message;

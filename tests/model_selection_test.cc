@@ -23,7 +23,8 @@ TEST(ThreadSelection, KdZeroDataChooseKdZero) {
   ThreadParams truth;
   truth.kd = 0.0;
   const MeasurementTable table = Table(truth, 5);
-  const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
+  const ThreadSelection s = SelectThreadModel(
+      table, testing_util::PaperModel<ThreadFitOptions>(), 0.03);
   EXPECT_EQ(Chosen(s.report).description, "kd=0");
   EXPECT_TRUE(Chosen(s.report).meets_tolerance);
   EXPECT_EQ(s.fit.params.kd, 0.0);
@@ -37,7 +38,8 @@ TEST(ThreadSelection, IntermediateKdNeedsKdFree) {
   ThreadParams truth;
   truth.kd = 0.5;
   const MeasurementTable table = Table(truth, 6);
-  const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
+  const ThreadSelection s = SelectThreadModel(
+      table, testing_util::PaperModel<ThreadFitOptions>(), 0.03);
   ASSERT_EQ(s.report.candidates.size(), 3u);
   EXPECT_FALSE(s.report.candidates[0].meets_tolerance);  // kd=0
   EXPECT_FALSE(s.report.candidates[1].meets_tolerance);  // kd=1
@@ -54,7 +56,8 @@ TEST(ThreadSelection, UnreachableToleranceKeepsLowestBicAndSaysSo) {
   truth.kd = 0.5;
   const MeasurementTable table = Table(truth, 7);
   // 2 % noise: no model reaches 0.1 % relative error.
-  const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.001);
+  const ThreadSelection s = SelectThreadModel(
+      table, testing_util::PaperModel<ThreadFitOptions>(), 0.001);
   ASSERT_EQ(s.report.candidates.size(), 3u);
   for (const CandidateReport& c : s.report.candidates) {
     EXPECT_FALSE(c.meets_tolerance);
@@ -69,8 +72,9 @@ TEST(ClothSelection, SameColouredThreadsShareTheAlbedo) {
   ClothParams linen;  // both threads have the same parameters
   ASSERT_TRUE(GetPreset("linen_plain", &linen));
   const MeasurementTable table = Table(linen, 8);
-  const ClothSelection s = SelectClothModel(table, GenericClothStart(linen),
-                                            ClothFitOptions(), 0.03);
+  const ClothSelection s =
+      SelectClothModel(table, GenericClothStart(linen),
+                       testing_util::PaperModel<ClothFitOptions>(), 0.03);
   // (kd and gamma_v trade off: kd = 0 with a wider volume lobe may meet the
   // tolerance too, so kd is not asserted.)
   const CandidateReport& chosen = Chosen(s.report);
@@ -93,7 +97,8 @@ TEST(ClothSelection, DifferentColoursKeepTheirOwnAlbedos) {
   ASSERT_TRUE(GetPreset("silk_shot", &shot));
   const MeasurementTable table = Table(shot, 9);
   const ClothSelection s =
-      SelectClothModel(table, GenericClothStart(shot), ClothFitOptions(), 0.03);
+      SelectClothModel(table, GenericClothStart(shot),
+                       testing_util::PaperModel<ClothFitOptions>(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
   EXPECT_TRUE(chosen.meets_tolerance);
   EXPECT_EQ(chosen.description.find("shared albedo"), std::string::npos);
@@ -115,8 +120,9 @@ TEST(ClothSelection, FewerTangentSamplesWhenTheyMeetTheTolerance) {
   curve.samples = 2;
   truth.threads[0].offsets_deg = SampleTangentCurve(curve);
   const MeasurementTable table = Table(truth, 10);
-  const ClothSelection s = SelectClothModel(table, GenericClothStart(satin),
-                                            ClothFitOptions(), 0.03);
+  const ClothSelection s =
+      SelectClothModel(table, GenericClothStart(satin),
+                       testing_util::PaperModel<ClothFitOptions>(), 0.03);
   const CandidateReport& chosen = Chosen(s.report);
   EXPECT_TRUE(chosen.meets_tolerance);
   EXPECT_EQ(chosen.description.rfind("T=2", 0), 0u) << chosen.description;
@@ -128,7 +134,8 @@ TEST(SelectionReport, JsonAndTextListEveryCandidate) {
   ThreadParams truth;
   truth.kd = 0.5;
   const MeasurementTable table = Table(truth, 11);
-  const ThreadSelection s = SelectThreadModel(table, ThreadFitOptions(), 0.03);
+  const ThreadSelection s = SelectThreadModel(
+      table, testing_util::PaperModel<ThreadFitOptions>(), 0.03);
   const std::string text = SelectionReportText(s.report);
   const std::string json = SelectionReportJson(s.report);
   for (const CandidateReport& c : s.report.candidates) {

@@ -203,7 +203,8 @@ TEST_P(ThreadRecoveryTest,
        NoiseFreeTableRecoversEveryParameterFromDefaultStart) {
   const ThreadParams truth = CaseParams(GetParam());
   const MeasurementTable table = ThreadTable(truth, 0.0, kSeed);
-  const ThreadFitResult result = FitThread(table, ThreadFitOptions());
+  const ThreadFitResult result =
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>());
   EXPECT_TRUE(result.report.usable) << result.report.message;
   EXPECT_TRUE(result.report.converged) << result.report.termination;
   EXPECT_EQ(result.report.identifiability, "");
@@ -214,7 +215,8 @@ TEST_P(ThreadRecoveryTest, TwoPercentNoiseTruthWithinThreeSigmaAndTolerance) {
   const ThreadParams truth = CaseParams(GetParam());
   const MeasurementTable table = ThreadTable(truth, kNoise, kSeed + 1);
   ASSERT_TRUE(table.has_sigma);
-  const ThreadFitResult result = FitThread(table, ThreadFitOptions());
+  const ThreadFitResult result =
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>());
   ExpectWithinNoise(result, truth, GetParam());
 }
 
@@ -235,7 +237,7 @@ TEST_P(ThreadRecoveryTest, FarStartsConvergeToTruthOrReportFailure) {
     init.gamma_v_deg = std::min(90.0, init.gamma_v_deg * factor);
     init.albedo *= 10.0;
     ASSERT_EQ(ValidateParams(init), "");
-    ThreadFitOptions options;
+    ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
     options.init = init;
     const ThreadFitResult result = FitThread(table, options);
     ExpectAllFinite(result);
@@ -268,7 +270,7 @@ TEST(ThreadFitOutliers, CauchyLossRecoversWithinFivePercent) {
     }
   }
   ASSERT_EQ(outliers, kRows / 100);
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.solver.loss = Loss::kCauchy;
   options.solver.loss_scale = 2.0;
   const ThreadFitResult result = FitThread(table, options);
@@ -304,7 +306,8 @@ TEST(ThreadFitIdentifiability, MirrorDirectionsLeaveKdAndGammaVUndetermined) {
     table.rows.push_back(row);
   }
   SynthesizeValues(truth, SynthOptions(), &random, &table);
-  const ThreadFitResult result = FitThread(table, ThreadFitOptions());
+  const ThreadFitResult result =
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>());
   ExpectAllFinite(result);
   Note("identifiability", result.report.identifiability);
   const std::vector<std::string> named =
@@ -328,7 +331,7 @@ TEST(ThreadFitIdentifiability, SingleDirectionPairCannotDetermineEtaKdAlbedo) {
   table.rows.assign(200, row);
   Random random(kSeed + 5);
   SynthesizeValues(truth, SynthOptions(), &random, &table);
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.free_only = {"eta", "kd", "albedo"};
   const ThreadFitResult result = FitThread(table, options);
   ExpectAllFinite(result);
@@ -350,7 +353,8 @@ TEST(ThreadFitIdentifiability, SingleRowWithSevenFreeParametersIsReported) {
   const ThreadParams truth = CaseParams("Linen");
   MeasurementTable table = ThreadTable(truth, 0.0, kSeed + 6, 1);
   ASSERT_EQ(table.rows.size(), 1u);
-  const ThreadFitResult result = FitThread(table, ThreadFitOptions());
+  const ThreadFitResult result =
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>());
   ExpectAllFinite(result);
   EXPECT_NE(result.report.identifiability, "");
   for (const ParameterReport& p : result.report.parameters) {
@@ -367,7 +371,7 @@ TEST(ThreadFitFreeFix, FixKdKeepsItsInitialValueExactly) {
   ThreadParams init = truth;
   init.kd = 0.2137;
   init.gamma_s_deg = 9.0;
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.init = init;
   options.fix = {"kd"};
   const ThreadFitResult result = FitThread(table, options);
@@ -389,7 +393,7 @@ TEST(ThreadFitFreeFix, FreeOnlyGammaSFitsOnlyThatParameter) {
   ThreadParams init = truth;
   init.gamma_s_deg = 7.0;
   init.kd = 0.35;  // fixed at a wrong value: must stay there
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.init = init;
   options.free_only = {"gamma_s_deg"};
   const ThreadFitResult result = FitThread(table, options);
@@ -414,7 +418,7 @@ TEST(ThreadFitFreeFix, FreeOnlyGammaSRecoversItWhenTheRestIsTrue) {
   const MeasurementTable table = ThreadTable(truth, 0.0, kSeed + 9, 500);
   ThreadParams init = truth;
   init.gamma_s_deg = 7.0;
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.init = init;
   options.free_only = {"gamma_s_deg"};
   const ThreadFitResult result = FitThread(table, options);
@@ -427,7 +431,7 @@ TEST(ThreadFitFreeFix, FixAlbedoFixesAllThreeChannels) {
   const MeasurementTable table = ThreadTable(truth, 0.0, kSeed + 10, 300);
   ThreadParams init = truth;
   init.albedo = glm::dvec3(0.1, 0.2, 0.3);
-  ThreadFitOptions options;
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.init = init;
   options.fix = {"albedo"};
   const ThreadFitResult result = FitThread(table, options);
@@ -442,7 +446,7 @@ TEST(ThreadFitFreeFix, UnknownNamesThrowInputErrorNamingTheName) {
   const MeasurementTable table =
       ThreadTable(CaseParams("Linen"), 0.0, kSeed, 50);
   for (bool fix : {true, false}) {
-    ThreadFitOptions options;
+    ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
     (fix ? options.fix : options.free_only) = {"gamma_q_deg"};
     try {
       FitThread(table, options);
@@ -502,8 +506,9 @@ TEST(ApplyFreeFix, MatchesFullNamesLastPartsAndAlbedo) {
 TEST(ThreadFitFinite, AllZeroTableGivesFiniteOutputs) {
   MeasurementTable table = ThreadTable(CaseParams("Linen"), 0.0, kSeed, 500);
   for (TableRow& row : table.rows) row.value = glm::dvec3(0.0);
-  ExpectAllFinite(FitThread(table, ThreadFitOptions()));
-  ThreadFitOptions options;
+  ExpectAllFinite(
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>()));
+  ThreadFitOptions options = testing_util::PaperModel<ThreadFitOptions>();
   options.init = CaseParams("Linen");
   ExpectAllFinite(FitThread(table, options));
 }
@@ -513,7 +518,8 @@ TEST(ThreadFitFinite, SingleRowTableGivesFiniteOutputs) {
     MeasurementTable table =
         ThreadTable(CaseParams("SatinFlat"), 0.0, kSeed, 1);
     if (zero) table.rows[0].value = glm::dvec3(0.0);
-    ExpectAllFinite(FitThread(table, ThreadFitOptions()));
+    ExpectAllFinite(
+        FitThread(table, testing_util::PaperModel<ThreadFitOptions>()));
   }
 }
 
@@ -532,7 +538,8 @@ TEST(ThreadFitFinite, GrazingAndTangentRowsGiveFiniteOutputs) {
   }
   Random random(kSeed);
   SynthesizeValues(CaseParams("Linen"), SynthOptions(), &random, &table);
-  ExpectAllFinite(FitThread(table, ThreadFitOptions()));
+  ExpectAllFinite(
+      FitThread(table, testing_util::PaperModel<ThreadFitOptions>()));
 }
 
 // A table of more than kSampleRows rows: the starts are solved on a
@@ -548,8 +555,10 @@ TEST(ThreadFitLargeTable, RefinesOnEveryRowAndReportsEveryRow) {
   for (bool sigma_given : {true, false}) {
     SCOPED_TRACE(sigma_given ? "sigma column" : "no sigma column");
     all.has_sigma = third.has_sigma = sigma_given;
-    const ThreadFitResult big = FitThread(all, ThreadFitOptions());
-    const ThreadFitResult small = FitThread(third, ThreadFitOptions());
+    const ThreadFitResult big =
+        FitThread(all, testing_util::PaperModel<ThreadFitOptions>());
+    const ThreadFitResult small =
+        FitThread(third, testing_util::PaperModel<ThreadFitOptions>());
     ASSERT_TRUE(big.report.converged) << big.report.message;
     ASSERT_TRUE(small.report.converged) << small.report.message;
     EXPECT_EQ(big.report.residuals, 3 * rows);

@@ -185,7 +185,7 @@ TEST(ToyModel, FitRecoversTheTruthWithHonestStandardDeviations) {
   for (TableRow& row : table.rows) {
     row.value = Value(truth, row.wi, row.wo, Quantity::kBrdf);
   }
-  AddMultiplicativeNoise(0.01, 0.0, &random, &table);
+  AddMultiplicativeNoise(0.01, glm::dvec3(0.0), &random, &table);
   MinnaertParams start;  // the table's defaults
   const FitResult<MinnaertParams> fit = FitMinnaert(table, start);
   ASSERT_TRUE(fit.report.usable) << fit.report.message;
