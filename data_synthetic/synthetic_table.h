@@ -64,8 +64,9 @@ void AddMultiplicativeNoise(double noise, const glm::dvec3& value_floor,
                             Random* random, MeasurementTable* table);
 
 // Fills the rows' values with the model's and adds noise. When noise > 0
-// the rows get sigma = noise * |clean value| (at least 1e-12) and the table
-// has_sigma. Negative noisy values are kept (a measurement can be).
+// the rows get sigma = noise * max(|clean value|, floor), the floor that of
+// the fits' default relative noise (RelativeNoiseFloor, io/table.h), and
+// the table has_sigma. Negative noisy values are kept (a measurement can be).
 void SynthesizeValues(const ModelParams& params, const SynthOptions& options,
                       Random* random, MeasurementTable* table);
 
