@@ -339,8 +339,8 @@ int RunFit(int argc, char** argv) {
             "data on an arbitrary scale: also fit a factor on the model "
             "(reported as 'scale')");
   args.Flag("energy-bound",
-            "thread, cloth: fit and write the bounded model, which conserves "
-            "energy on both sides (the default; docs/fitting.md)");
+            "thread, cloth, auto: fit and write the bounded model, which "
+            "conserves energy on both sides (the default; docs/fitting.md)");
   args.Flag("paper-model",
             "thread, cloth, auto: fit and write the paper's model instead of "
             "the bounded one (it does not conserve energy toward grazing "
