@@ -240,13 +240,12 @@ int RunFit(int argc, char** argv) {
       args.Fail(std::string("--") + cloth_only + " is for the cloth model");
     }
   }
-  if (args.Has("energy-bound") && model != "thread" && model != "cloth" &&
-      model != "auto") {
-    args.Fail("--energy-bound is for the thread, cloth and auto models");
-  }
-  if (args.Has("paper-model") && model != "thread" && model != "cloth" &&
-      model != "auto") {
-    args.Fail("--paper-model is for the thread, cloth and auto models");
+  for (const char* flag : {"energy-bound", "paper-model"}) {
+    if (args.Has(flag) && model != "thread" && model != "cloth" &&
+        model != "auto") {
+      args.Fail(std::string("--") + flag +
+                " is for the thread, cloth and auto models");
+    }
   }
   if (args.Has("paper-model") && args.Has("energy-bound")) {
     args.Fail("--paper-model and --energy-bound exclude each other");
