@@ -384,9 +384,10 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
     // the chosen one's.
     std::vector<double> x_every, x_within;
     BoundedStart<ClothParams> start = ChooseBoundedStart<ClothParams>(
-        table, options.solver.noise, [&](const MeasurementTable& rows) {
+        table, options.solver.noise,
+        [&](const MeasurementTable& rows, bool every) {
           return FitClothThrough(rows, init, options, nullptr, nullptr,
-                                 &rows == &table ? &x_every : &x_within);
+                                 every ? &x_every : &x_within);
         });
     std::vector<double> x = start.of_every_row ? x_every : x_within;
     result = SettleEnergyBound<ClothParams>(

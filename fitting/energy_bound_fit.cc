@@ -12,27 +12,39 @@ namespace {
 
 constexpr double kCos60 = 0.5;
 
+// Whether the bound leaves the row alone (light or view below the
+// surface) or both its cosines are at least c.
 bool Within(const TableRow& row, double c) {
-  auto ok = [c](double z) { return z <= 0.0 || z >= c; };
-  return ok(row.wi.z) && ok(row.wo.z);
+  const double ci = row.wi.z, co = row.wo.z;
+  return !(ci > 0.0 && co > 0.0) || (ci >= c && co >= c);
+}
+
+size_t CountWithin(const MeasurementTable& table, double c) {
+  size_t n = 0;
+  for (const TableRow& row : table.rows) n += Within(row, c) ? 1 : 0;
+  return n;
 }
 
 }  // namespace
+
+const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
+                                   MeasurementTable* storage) {
+  if (CountWithin(table, c) == table.rows.size()) return table;
+  *storage = table;
+  storage->rows.clear();
+  for (const TableRow& row : table.rows) {
+    if (Within(row, c)) storage->rows.push_back(row);
+  }
+  return *storage;
+}
 
 const MeasurementTable& FirstFitRows(const MeasurementTable& table,
                                      MeasurementTable* storage) {
   const size_t enough = std::max<size_t>(20, table.rows.size() / 10);
   for (double c : {kCos60, kEnergyBoundFadeCos}) {
-    size_t n = 0;
-    for (const TableRow& row : table.rows) n += Within(row, c) ? 1 : 0;
+    const size_t n = CountWithin(table, c);
     if (n == table.rows.size()) return table;
-    if (n < enough) continue;
-    *storage = table;
-    storage->rows.clear();
-    for (const TableRow& row : table.rows) {
-      if (Within(row, c)) storage->rows.push_back(row);
-    }
-    return *storage;
+    if (n >= enough) return RowsWithin(table, c, storage);
   }
   return table;
 }
@@ -69,17 +81,6 @@ bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound) {
     if (!(g >= 1.0 - kEnergyBoundSettled)) return false;
   }
   return true;
-}
-
-bool RowsInHorizonFade(const MeasurementTable& table) {
-  for (const TableRow& row : table.rows) {
-    const double ci = row.wi.z, co = row.wo.z;
-    if (ci > 0.0 && co > 0.0 &&
-        (ci < kEnergyBoundFadeCos || co < kEnergyBoundFadeCos)) {
-      return true;
-    }
-  }
-  return false;
 }
 
 void HoldUnusedEntries(const MeasurementTable& table, const EnergyBound& tables,

@@ -166,7 +166,8 @@ ThreadFitResult FitThread(const MeasurementTable& table,
                                   search_factor, scale_cap);
         },
         ChooseBoundedStart<ThreadParams>(
-            table, options.solver.noise, [&](const MeasurementTable& rows) {
+            table, options.solver.noise,
+            [&](const MeasurementTable& rows, bool) {
               return FitThreadThrough(rows, options, nullptr, nullptr);
             }));
   } else {

@@ -14,6 +14,8 @@
 #include "fitting/cloth_fit.h"
 #include "fitting/fit_result.h"
 #include "fitting/thread_fit.h"
+#include "models/bounded.h"
+#include "models/evaluate.h"
 #include "models/lafortune.h"
 
 namespace clothfit {
@@ -30,8 +32,6 @@ inline const ParameterReport& Param(const FitReport& report,
   return kNone;
 }
 
-// A synthetic table of `rows` random direction pairs with multiplicative
-// noise (and sigma when noise > 0).
 // Thread or cloth fit options that fit the paper's model (Sadeghi et al.
 // 2013) instead of the default bounded one: for tables drawn from the
 // paper's model (a NoisyTable of parameters without a bound), whose rows
@@ -43,6 +43,8 @@ Options PaperModel() {
   return o;
 }
 
+// A synthetic table of `rows` random direction pairs with multiplicative
+// noise (and sigma when noise > 0).
 inline MeasurementTable NoisyTable(const ModelParams& truth, double noise,
                                    uint64_t seed, int rows) {
   DirectionSampling sampling;
@@ -50,6 +52,24 @@ inline MeasurementTable NoisyTable(const ModelParams& truth, double noise,
   SynthOptions synth;
   synth.noise = noise;
   return SyntheticTable(truth, sampling, synth, seed);
+}
+
+// The sum of squares over the table's rows of the paper's model at
+// `paper` bounded by its own bound, found afresh (models/bounded.h); with
+// `by_sigma`, of the residuals divided by the rows' sigma (the cost a fit
+// with the table's noise model minimises).
+inline double BoundedSquares(const ModelParams& paper,
+                             const MeasurementTable& table,
+                             bool by_sigma = false) {
+  const ModelParams bounded = WithEnergyBound(paper);
+  double sum = 0.0;
+  for (const TableRow& row : table.rows) {
+    glm::dvec3 d =
+        Evaluate(bounded, row.wi, row.wo, table.quantity) - row.value;
+    if (by_sigma) d /= row.sigma;
+    for (int c = 0; c < table.channels; ++c) sum += d[c] * d[c];
+  }
+  return sum;
 }
 
 // The names listed by FitReport::identifiability ("not identifiable: a, b").

@@ -203,19 +203,6 @@ TEST(ModelEnergy, BothSidesAreCheckedAndTheBoundedModelsConserveEnergy) {
   }
 }
 
-// The sum of squares over the table's rows of the paper's model at
-// `paper` bounded by its own bound, found afresh (models/bounded.h).
-double BoundedSquares(const ModelParams& paper, const MeasurementTable& table) {
-  const ModelParams bounded = WithEnergyBound(paper);
-  double sum = 0.0;
-  for (const TableRow& row : table.rows) {
-    const glm::dvec3 d =
-        Evaluate(bounded, row.wi, row.wo, table.quantity) - row.value;
-    sum += glm::dot(d, d);
-  }
-  return sum;
-}
-
 // A bounded cloth fit (--energy-bound) writes the bounded model it fitted:
 // on a noise-free table of the bounded linen (its scale free) it recovers
 // the scale, carries its bound, conserves energy and reproduces the table.
@@ -258,7 +245,7 @@ TEST(ClothEnergy, BoundedFitsWriteTheirBoundAndReachTheBoundedOptimum) {
       auto squares = [&](double scale) {
         ClothParams c = fit.params;
         c.scale = scale;
-        return BoundedSquares(c, table);
+        return testing_util::BoundedSquares(c, table);
       };
       const double best = squares(fit.params.scale);
       EXPECT_LT(best, squares(1.02 * fit.params.scale));
@@ -300,73 +287,11 @@ TEST(ClothEnergy, FittedScaleStopsWhereTheBoundDividesItOut) {
   auto squares = [&](double scale) {
     ClothParams c = fit.params;
     c.scale = scale;
-    return BoundedSquares(c, table);
+    return testing_util::BoundedSquares(c, table);
   };
   const double at_cap = squares(fit.params.scale);
   EXPECT_NEAR(squares(1.5 * fit.params.scale), at_cap, 1e-9 * at_cap);
   EXPECT_GT(squares(fit.params.scale / 1.05), at_cap * (1.0 + 1e-6));
-}
-
-// The bounded fit reaches the bounded model's optimum, not a point where
-// the rows' bound factors, held fixed, would have it: on a table of the
-// bounded satin thread with 3 % noise (the bound lowers most rows toward
-// grazing), moving any parameter 0.5 % either way from the fit does not
-// lower the sum of squares (absolute noise) of the bounded model, its
-// bound found afresh at each point.
-TEST(ThreadEnergy, BoundedFitIsAtTheBoundedModelsOptimum) {
-  ClothParams satin;
-  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
-  ThreadParams truth = satin.threads[0].params;
-  truth.energy_bound = EnergyBoundOf(truth);
-  const MeasurementTable table = testing_util::NoisyTable(truth, 0.03, 5, 600);
-  ThreadFitOptions options;
-  options.energy_bound = true;
-  options.solver.noise.kind = NoiseKind::kAbsolute;
-  const ThreadFitResult fit = FitThread(table, options);
-  ASSERT_TRUE(fit.report.usable) << fit.report.message;
-  EXPECT_TRUE(fit.report.converged) << fit.report.message;
-  auto squares = [&](const std::vector<double>& x) {
-    ThreadParams p;
-    FromArray(x.data(), &p);
-    return BoundedSquares(p, table);
-  };
-  std::vector<double> x(kThreadFlatSize);
-  ToArray(fit.params, x.data());
-  const double best = squares(x);
-  for (int i = 0; i < kThreadFlatSize; ++i) {
-    for (double step : {1.005, 1.0 / 1.005}) {
-      std::vector<double> moved = x;
-      moved[i] *= step;
-      EXPECT_LE(best, squares(moved) * (1.0 + 1e-9)) << i << " " << step;
-    }
-  }
-}
-
-// A bounded thread fit recovers the satin's thread from a table of the
-// bounded thread with 2 % noise, from the default start: the first fit on
-// the rows within 60 degrees, then the refits through the bound. Every
-// parameter within 5 % of the truth, the bound attached, energy conserved.
-TEST(ThreadEnergy, BoundedFitRecoversTheThreadFromNoisyData) {
-  ClothParams satin;
-  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
-  ThreadParams truth = satin.threads[0].params;
-  truth.energy_bound = EnergyBoundOf(truth);
-  ASSERT_NE(truth.energy_bound, nullptr);
-  const MeasurementTable table =
-      testing_util::NoisyTable(truth, 0.02, 11, 2000);
-  ThreadFitOptions options;
-  options.energy_bound = true;
-  const ThreadFitResult fit = FitThread(table, options);
-  ASSERT_TRUE(fit.report.usable) << fit.report.message;
-  EXPECT_TRUE(fit.report.converged) << fit.report.message;
-  ASSERT_NE(fit.params.energy_bound, nullptr);
-  EXPECT_LE(fit.report.max_albedo, 1.0);
-  std::vector<double> got(kThreadFlatSize), want(kThreadFlatSize);
-  ToArray(fit.params, got.data());
-  ToArray(truth, want.data());
-  for (int i = 0; i < kThreadFlatSize; ++i) {
-    EXPECT_NEAR(got[i], want[i], 0.05 * std::abs(want[i]) + 1e-3) << i;
-  }
 }
 
 // A bounded cloth fit finds the satin's weak weft (coverage 0.1) from the
