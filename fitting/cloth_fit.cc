@@ -156,16 +156,15 @@ std::vector<std::vector<double>> RefineAtFixedGeometry(
 // One fit of the model through the rows' fixed bound factors (null: the
 // paper's model), or (`plan`) of the bounded model with its tables through
 // that plan: from the start search, from the solver vector `*refit_x`
-// alone, or from both when `search_factor` is given (the rows' factors the
-// search sees); a fitted scale at most scale_cap. The solver vector of the
-// result goes to `*x_out` (when not null).
+// alone, or from both when `search_bound` is given (whose factors of the
+// rows the search sees); a fitted scale at most scale_cap. The solver vector of
+// the result goes to `*x_out` (when not null).
 ClothFitResult FitClothThrough(
     const MeasurementTable& table, const ClothParams& init,
     const ClothFitOptions& options, const std::vector<double>* bound_factor,
     const std::vector<double>* refit_x, std::vector<double>* x_out,
     const EnergyBoundPlan* plan = nullptr,
-    const std::vector<double>* search_factor = nullptr,
-    double scale_cap = HUGE_VAL) {
+    const EnergyBound* search_bound = nullptr, double scale_cap = HUGE_VAL) {
   const size_t n = init.threads.size();
   auto weave = std::make_shared<Weave>(init);
   const ClothVector& v = weave->vector;
@@ -285,12 +284,13 @@ ClothFitResult FitClothThrough(
   search.weave = weave.get();
   search.specs = &lsq.specs;
   search.init = CoverageToStick(*weave, ClothToVector(init));
-  search.row_factor = SearchRowValues(
-      table.rows.size(), search_factor ? search_factor : bound_factor);
+  search.row_factor = search_bound
+                          ? EnergyBoundFactors(sample, search_bound)
+                          : SearchRowValues(table.rows.size(), bound_factor);
   search.search_widths = options.multi_start;
   search.design_points = options.multi_start ? options.design_points : 0;
   ClothStarts starts;
-  const bool searched = !refit_x || search_factor;
+  const bool searched = !refit_x || search_bound;
   if (searched) {
     starts = SearchClothStarts(search, std::max(1, options.solve_starts));
   }
@@ -393,9 +393,9 @@ ClothFitResult FitCloth(const MeasurementTable& table, const ClothParams& given,
     result = SettleEnergyBound<ClothParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ClothParams&,
-            const std::vector<double>* search_factor, double scale_cap) {
+            const EnergyBound* search_bound, double scale_cap) {
           return FitClothThrough(table, init, options, nullptr, &x, &x, &plan,
-                                 search_factor, scale_cap);
+                                 search_bound, scale_cap);
         },
         std::move(start));
   } else {

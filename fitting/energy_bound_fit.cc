@@ -28,8 +28,9 @@ size_t CountWithin(const MeasurementTable& table, double c) {
 }  // namespace
 
 const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
-                                   MeasurementTable* storage) {
-  if (CountWithin(table, c) == table.rows.size()) return table;
+                                   size_t min_rows, MeasurementTable* storage) {
+  const size_t n = CountWithin(table, c);
+  if (n == table.rows.size() || n < min_rows) return table;
   *storage = table;
   storage->rows.clear();
   for (const TableRow& row : table.rows) {
@@ -38,13 +39,17 @@ const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
   return *storage;
 }
 
+size_t EnoughFirstFitRows(const MeasurementTable& table) {
+  return std::max<size_t>(20, table.rows.size() / 10);
+}
+
 const MeasurementTable& FirstFitRows(const MeasurementTable& table,
                                      MeasurementTable* storage) {
-  const size_t enough = std::max<size_t>(20, table.rows.size() / 10);
+  const size_t enough = EnoughFirstFitRows(table);
   for (double c : {kCos60, kEnergyBoundFadeCos}) {
-    const size_t n = CountWithin(table, c);
-    if (n == table.rows.size()) return table;
-    if (n >= enough) return RowsWithin(table, c, storage);
+    if (CountWithin(table, c) >= enough) {
+      return RowsWithin(table, c, enough, storage);
+    }
   }
   return table;
 }
@@ -77,7 +82,9 @@ std::vector<double> EnergyBoundFactors(const MeasurementTable& table,
 }
 
 bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound) {
-  for (double g : EnergyBoundFactors(table, bound)) {
+  if (bound == nullptr) return true;
+  for (const TableRow& row : table.rows) {
+    const double g = EnergyBoundFactor(bound, row.wi.z, row.wo.z);
     if (!(g >= 1.0 - kEnergyBoundSettled)) return false;
   }
   return true;
@@ -128,11 +135,12 @@ double EnergyBoundScaleCap(const MeasurementTable& table,
   return cap > 0.0 ? std::max(1.0, cap) : HUGE_VAL;
 }
 
-void ReportEnergyBound(const std::vector<double>& factors, int refits,
-                       bool settled, FitReport* report) {
+void ReportEnergyBound(const MeasurementTable& table, const EnergyBound* bound,
+                       int refits, bool settled, FitReport* report) {
   int lowered = 0;
   double most = 0.0;
-  for (double f : factors) {
+  for (const TableRow& row : table.rows) {
+    const double f = EnergyBoundFactor(bound, row.wi.z, row.wo.z);
     if (f < 1.0 - kEnergyBoundSettled) ++lowered;
     most = std::max(most, 1.0 - f);
   }
@@ -140,7 +148,7 @@ void ReportEnergyBound(const std::vector<double>& factors, int refits,
   std::snprintf(text, sizeof(text),
                 "lowers %d of %zu rows, by up to %.3g %%; %d solve(s) of the "
                 "bounded model",
-                lowered, factors.size(), 100.0 * most, refits);
+                lowered, table.rows.size(), 100.0 * most, refits);
   report->energy_bound = text;
   if (settled) return;
   report->converged = false;

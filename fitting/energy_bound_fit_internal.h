@@ -52,10 +52,11 @@ inline constexpr double kEnergyBoundEntrySlack = 1e-3;
 // (EnergyBoundEntry::others and its azimuth).
 inline constexpr size_t kEnergyBoundPeaks = 4;
 
-// The rows of `table` with both cosines >= cos 60 degrees, or <= 0 (where
-// the bound does not act): a quarter of a table sampled uniformly over the
-// hemisphere. When fewer than max(20, a tenth of the rows), those within 87
-// degrees, else the whole table. Returns `table` itself or `*storage`.
+// The rows of `table` with both cosines >= cos 60 degrees, or with the
+// light or the view below the surface (where the bound does not act): a
+// quarter of a table sampled uniformly over the hemisphere. When fewer
+// than EnoughFirstFitRows, those within 87 degrees, else the whole table.
+// Returns `table` itself or `*storage`.
 const MeasurementTable& FirstFitRows(const MeasurementTable& table,
                                      MeasurementTable* storage);
 
@@ -75,11 +76,15 @@ bool LowersNoRow(const MeasurementTable& table, const EnergyBound* bound);
 
 // The rows of `table` the bound leaves alone (light or view below the
 // surface) or whose cosines are both at least c: `table` itself when that
-// is every row, else *storage. With c = kEnergyBoundFadeCos, the rows
-// outside the horizon fade (within 3 degrees of the horizon:
-// models/energy_bound.h), which any bound lowers.
+// is every row or fewer than min_rows, else *storage. With c =
+// kEnergyBoundFadeCos, the rows outside the horizon fade (within 3 degrees
+// of the horizon: models/energy_bound.h), which any bound lowers.
 const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
-                                   MeasurementTable* storage);
+                                   size_t min_rows, MeasurementTable* storage);
+
+// The fewest rows a first fit is made on (FirstFitRows, RowsWithin):
+// max(20, a tenth of the table's rows).
+size_t EnoughFirstFitRows(const MeasurementTable& table);
 
 // The start of a bounded fit: the paper's model fitted to some rows, with
 // its bound and the plan of that bound's entries (found once: the azimuth
@@ -134,8 +139,8 @@ BoundedStart<P> ChooseBoundedStart(
     return BoundedCost(table, noise, ModelParams(p));
   };
   MeasurementTable outside_storage;
-  const MeasurementTable& outside =
-      RowsWithin(table, kEnergyBoundFadeCos, &outside_storage);
+  const MeasurementTable& outside = RowsWithin(
+      table, kEnergyBoundFadeCos, EnoughFirstFitRows(table), &outside_storage);
   FitResult<P> every_fit = fit_rows(outside, true);
   MeasurementTable first_storage;
   const MeasurementTable& first = FirstFitRows(table, &first_storage);
@@ -234,10 +239,11 @@ bool MergeEnergyBoundPlans(const MeasurementTable& table, const P& p,
     }
   }
   if (same && raised) {  // only idle entries raised: the rows must not see it
-    const std::vector<double> solved = EnergyBoundFactors(table, bound->get());
-    const std::vector<double> now = EnergyBoundFactors(table, merged.get());
-    for (size_t i = 0; i < solved.size() && same; ++i) {
-      same = std::abs(now[i] - solved[i]) <= 1e-12 * solved[i];
+    for (size_t i = 0; i < table.rows.size() && same; ++i) {
+      const TableRow& row = table.rows[i];
+      const double solved = EnergyBoundFactor(bound->get(), row.wi.z, row.wo.z);
+      const double now = EnergyBoundFactor(merged.get(), row.wi.z, row.wo.z);
+      same = std::abs(now - solved) <= 1e-12 * solved;
     }
   }
   if (raised) *bound = merged;
@@ -265,15 +271,17 @@ void ReportScaleCap(double scale, double cap, FitReport* report);
 // how much, the solves it took; when it did not settle within
 // kEnergyBoundRefits solves, the fit is not converged and the message says
 // so.
-void ReportEnergyBound(const std::vector<double>& factors, int refits,
-                       bool settled, FitReport* report);
+void ReportEnergyBound(const MeasurementTable& table, const EnergyBound* bound,
+                       int refits, bool settled, FitReport* report);
 
 // The fit of the bounded model from `start` (ChooseBoundedStart):
-// refit(plan, from, search_factor, scale_cap) solves the bounded model, its
+// refit(plan, from, search_bound, scale_cap) solves the bounded model, its
 // tables through `plan`, from the parameters `from` and, with
-// search_factor, from the start search too, done through those fixed
-// factors of the rows (the first solve: the first fit's rows may not tell
-// a weak thread's parameters, nor its basin be that of every row); a
+// search_bound, from the start search too, done through that bound's
+// fixed factors of the rows (the first solve: the first fit's rows may
+// not tell a weak thread's parameters, nor its basin be that of every
+// row; the search sees the sample's rows, so no factor of every row is
+// held through the solves: 76 MiB at 10^7 rows); a
 // fitted scale stays at most scale_cap (EnergyBoundScaleCap at `from`).
 // Returns the last solve with its bound attached (the tables it was solved
 // through), its report the bound's effect, the iterations of all solves and
@@ -282,14 +290,12 @@ template <typename P>
 FitResult<P> SettleEnergyBound(
     const MeasurementTable& table,
     const std::function<FitResult<P>(const EnergyBoundPlan&, const P&,
-                                     const std::vector<double>*, double)>&
-        refit,
+                                     const EnergyBound*, double)>& refit,
     BoundedStart<P> start) {
   FitResult<P> result = std::move(start.fit);
   FitResult<P>* fit = &result;
   EnergyBoundPlan plan = std::move(start.plan);
   std::shared_ptr<const EnergyBound> bound = std::move(start.bound);
-  std::vector<double> g = EnergyBoundFactors(table, bound.get());
   // Where the bound lowers no row, the paper's model's fit (of the table
   // itself) is the bounded model's.
   bool settled =
@@ -305,7 +311,7 @@ FitResult<P> SettleEnergyBound(
     HoldUnusedEntries(table, *tables, &plan);
     const P from = fit->params;
     scale_cap = EnergyBoundScaleCap(table, *tables, from.scale);
-    *fit = refit(plan, from, refits == 0 ? &g : nullptr, scale_cap);
+    *fit = refit(plan, from, refits == 0 ? bound.get() : nullptr, scale_cap);
     iterations += fit->report.iterations;
     ++refits;
     // The tables it was solved through (its plan refined to the crests at
@@ -318,13 +324,12 @@ FitResult<P> SettleEnergyBound(
     HoldUnusedEntries(table, *bound, &fresh_plan);
     settled =
         MergeEnergyBoundPlans(table, fit->params, fresh_plan, &plan, &bound);
-    g = EnergyBoundFactors(table, bound.get());
   }
   fit->report.iterations = iterations;
   fit->report.starts = starts;
   fit->report.search = search;
   fit->params.energy_bound = bound;
-  ReportEnergyBound(g, refits, settled, &fit->report);
+  ReportEnergyBound(table, bound.get(), refits, settled, &fit->report);
   ReportScaleCap(fit->params.scale, scale_cap, &fit->report);
   ReportModelEnergy(ModelParams(fit->params), &fit->report);
   return result;

@@ -50,11 +50,12 @@ struct ThreadEvaluator {
 std::vector<std::vector<double>> SearchThreadStarts(
     const MeasurementTable& table, const ThreadFitOptions& options,
     const Weighting& weighting, const std::vector<ParameterSpec>& specs,
-    const std::vector<double>* bound_factor) {
+    const std::vector<double>* bound_factor, const EnergyBound* search_bound) {
   MeasurementTable sample_storage;
   const MeasurementTable& sample = SearchTable(table, &sample_storage);
   const std::vector<double> factor =
-      SearchRowValues(table.rows.size(), bound_factor);
+      search_bound ? EnergyBoundFactors(sample, search_bound)
+                   : SearchRowValues(table.rows.size(), bound_factor);
   StartSearchProblem search;
   search.table = &sample;
   search.weighting = &weighting;
@@ -86,14 +87,15 @@ std::vector<std::vector<double>> SearchThreadStarts(
 // One fit of the model through the rows' fixed bound factors (null: the
 // paper's model), or (`plan`) of the bounded model with its tables through
 // that plan: from the start search, from `refit_from` alone, or from both
-// when `search_factor` is given (the rows' factors the search sees); a
-// fitted scale at most scale_cap.
-ThreadFitResult FitThreadThrough(
-    const MeasurementTable& table, const ThreadFitOptions& options,
-    const std::vector<double>* bound_factor, const ThreadParams* refit_from,
-    const EnergyBoundPlan* plan = nullptr,
-    const std::vector<double>* search_factor = nullptr,
-    double scale_cap = HUGE_VAL) {
+// when `search_bound` is given (whose factors of the rows the search
+// sees); a fitted scale at most scale_cap.
+ThreadFitResult FitThreadThrough(const MeasurementTable& table,
+                                 const ThreadFitOptions& options,
+                                 const std::vector<double>* bound_factor,
+                                 const ThreadParams* refit_from,
+                                 const EnergyBoundPlan* plan = nullptr,
+                                 const EnergyBound* search_bound = nullptr,
+                                 double scale_cap = HUGE_VAL) {
   LeastSquaresProblem lsq;
   lsq.specs = ParameterSpecs(ThreadParams());
   ApplyFreeFix(options.fix, options.free_only, &lsq.specs);
@@ -116,9 +118,9 @@ ThreadFitResult FitThreadThrough(
                         ThreadEvaluator{&table, bound_factor}),
                     TableFitRows(table, weighting), blocks, &lsq, plan);
   std::vector<std::vector<double>> starts;
-  if (!refit_from || search_factor) {
+  if (!refit_from || search_bound) {
     starts = SearchThreadStarts(table, options, weighting, lsq.specs,
-                                search_factor ? search_factor : bound_factor);
+                                bound_factor, search_bound);
   }
   if (refit_from) {
     std::vector<double> x(kThreadFlatSize + 1);
@@ -161,9 +163,9 @@ ThreadFitResult FitThread(const MeasurementTable& table,
     result = SettleEnergyBound<ThreadParams>(
         table,
         [&](const EnergyBoundPlan& plan, const ThreadParams& from,
-            const std::vector<double>* search_factor, double scale_cap) {
+            const EnergyBound* search_bound, double scale_cap) {
           return FitThreadThrough(table, options, nullptr, &from, &plan,
-                                  search_factor, scale_cap);
+                                  search_bound, scale_cap);
         },
         ChooseBoundedStart<ThreadParams>(
             table, options.solver.noise,

@@ -9,6 +9,7 @@
 #include "fitting/least_squares.h"
 #include "fitting/thread_fit.h"
 #include "models/bounded.h"
+#include "models/evaluate.h"
 #include "models/presets.h"
 #include "tests/fit_test_util.h"
 
@@ -121,6 +122,33 @@ TEST(ThreadEnergy, LargeTableStartsFromItsSampleAndIsFittedOnEveryRow) {
       EXPECT_LE(best, squares(moved) * (1.0 + 1e-9)) << p.name << " " << step;
     }
   }
+}
+
+// A table whose every row lies in the bound's fade to the horizon (the
+// light within 3 degrees of it): the start cannot leave those rows out,
+// and is fitted to all of them. The fit is usable, finite, bounded and
+// reproduces the table's noise-free values of the bounded thread.
+TEST(ThreadEnergy, TableOfGrazingLightOnlyIsFittedOnItsRows) {
+  ThreadParams truth;  // the default thread (Linen Plain's)
+  truth.energy_bound = EnergyBoundOf(truth);
+  MeasurementTable table = testing_util::NoisyTable(truth, 0.0, 3, 300);
+  const double sin88 = std::sin(88.5 * kPi / 180.0);
+  const double cos88 = std::cos(88.5 * kPi / 180.0);
+  ASSERT_LT(cos88, kEnergyBoundFadeCos);
+  for (TableRow& row : table.rows) {
+    const double phi = std::atan2(row.wi.y, row.wi.x);
+    row.wi = glm::dvec3(sin88 * std::cos(phi), sin88 * std::sin(phi), cos88);
+    row.value = Evaluate(ModelParams(truth), row.wi, row.wo, table.quantity);
+  }
+  const ThreadFitResult fit = FitThread(table, ThreadFitOptions());
+  ASSERT_TRUE(fit.report.usable) << fit.report.message;
+  EXPECT_EQ(fit.report.rows, 300);
+  ASSERT_NE(fit.params.energy_bound, nullptr);
+  EXPECT_LE(fit.report.max_albedo, 1.0);
+  std::vector<double> x(kThreadFlatSize);
+  ToArray(fit.params, x.data());
+  for (double v : x) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_LT(fit.report.relative_rms, 0.05);
 }
 
 }  // namespace
