@@ -25,18 +25,24 @@ size_t CountWithin(const MeasurementTable& table, double c) {
   return n;
 }
 
-}  // namespace
-
-const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
-                                   size_t min_rows, MeasurementTable* storage) {
-  const size_t n = CountWithin(table, c);
-  if (n == table.rows.size() || n < min_rows) return table;
+// *storage: `table` with only its rows Within c.
+const MeasurementTable& CopyWithin(const MeasurementTable& table, double c,
+                                   MeasurementTable* storage) {
   *storage = table;
   storage->rows.clear();
   for (const TableRow& row : table.rows) {
     if (Within(row, c)) storage->rows.push_back(row);
   }
   return *storage;
+}
+
+}  // namespace
+
+const MeasurementTable& RowsWithin(const MeasurementTable& table, double c,
+                                   size_t min_rows, MeasurementTable* storage) {
+  const size_t n = CountWithin(table, c);
+  if (n == table.rows.size() || n < min_rows) return table;
+  return CopyWithin(table, c, storage);
 }
 
 size_t EnoughFirstFitRows(const MeasurementTable& table) {
@@ -47,9 +53,9 @@ const MeasurementTable& FirstFitRows(const MeasurementTable& table,
                                      MeasurementTable* storage) {
   const size_t enough = EnoughFirstFitRows(table);
   for (double c : {kCos60, kEnergyBoundFadeCos}) {
-    if (CountWithin(table, c) >= enough) {
-      return RowsWithin(table, c, enough, storage);
-    }
+    const size_t n = CountWithin(table, c);
+    if (n == table.rows.size()) return table;
+    if (n >= enough) return CopyWithin(table, c, storage);
   }
   return table;
 }

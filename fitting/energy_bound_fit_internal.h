@@ -141,12 +141,13 @@ BoundedStart<P> ChooseBoundedStart(
   MeasurementTable outside_storage;
   const MeasurementTable& outside = RowsWithin(
       table, kEnergyBoundFadeCos, EnoughFirstFitRows(table), &outside_storage);
+  const bool outside_is_table = &outside == &table;
   FitResult<P> every_fit = fit_rows(outside, true);
   MeasurementTable first_storage;
   const MeasurementTable& first = FirstFitRows(table, &first_storage);
   // (FirstFitRows are among those outside the fade: as many are the same.)
   if (first.rows.size() == outside.rows.size()) {
-    return bounded(std::move(every_fit), &outside == &table);
+    return bounded(std::move(every_fit), outside_is_table);
   }
   // Where the fit of every row converged and its bound lowers none of
   // them, that fit is the bounded model's (SettleEnergyBound): no other
@@ -155,7 +156,7 @@ BoundedStart<P> ChooseBoundedStart(
   std::optional<BoundedStart<P>> every;
   if (every_fit.report.usable) {
     const bool converged = every_fit.report.converged;
-    every = bounded(std::move(every_fit), &outside == &table);
+    every = bounded(std::move(every_fit), outside_is_table);
     if (converged && every->of_table &&
         LowersNoRow(table, every->bound.get())) {
       return std::move(*every);
@@ -164,7 +165,7 @@ BoundedStart<P> ChooseBoundedStart(
   FitResult<P> within_fit = fit_rows(first, false);
   if (!within_fit.report.usable) {
     return every ? std::move(*every)
-                 : bounded(std::move(every_fit), &outside == &table);
+                 : bounded(std::move(every_fit), outside_is_table);
   }
   BoundedStart<P> within = bounded(std::move(within_fit), false);
   within.of_every_row = false;

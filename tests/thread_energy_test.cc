@@ -16,6 +16,19 @@
 namespace clothfit {
 namespace {
 
+// The satin preset's warp thread with its energy bound (the bounded
+// model a table is drawn from).
+ThreadParams BoundedSatinThread() {
+  ClothParams satin;
+  if (!GetPreset("polyester_satin_charmeuse", &satin)) {
+    ADD_FAILURE() << "no preset polyester_satin_charmeuse";
+    return ThreadParams();
+  }
+  ThreadParams thread = satin.threads[0].params;
+  thread.energy_bound = EnergyBoundOf(thread);
+  return thread;
+}
+
 // The bounded fit reaches the bounded model's optimum, not a point where
 // the rows' bound factors, held fixed, would have it: on a table of the
 // bounded satin thread with 3 % noise (the bound lowers most rows toward
@@ -23,10 +36,7 @@ namespace {
 // lower the sum of squares (absolute noise) of the bounded model, its
 // bound found afresh at each point.
 TEST(ThreadEnergy, BoundedFitIsAtTheBoundedModelsOptimum) {
-  ClothParams satin;
-  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
-  ThreadParams truth = satin.threads[0].params;
-  truth.energy_bound = EnergyBoundOf(truth);
+  const ThreadParams truth = BoundedSatinThread();
   const MeasurementTable table = testing_util::NoisyTable(truth, 0.03, 5, 600);
   ThreadFitOptions options;
   options.energy_bound = true;
@@ -56,10 +66,7 @@ TEST(ThreadEnergy, BoundedFitIsAtTheBoundedModelsOptimum) {
 // the rows within 60 degrees, then the refits through the bound. Every
 // parameter within 5 % of the truth, the bound attached, energy conserved.
 TEST(ThreadEnergy, BoundedFitRecoversTheThreadFromNoisyData) {
-  ClothParams satin;
-  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
-  ThreadParams truth = satin.threads[0].params;
-  truth.energy_bound = EnergyBoundOf(truth);
+  const ThreadParams truth = BoundedSatinThread();
   ASSERT_NE(truth.energy_bound, nullptr);
   const MeasurementTable table =
       testing_util::NoisyTable(truth, 0.02, 11, 2000);
@@ -87,10 +94,7 @@ TEST(ThreadEnergy, BoundedFitRecoversTheThreadFromNoisyData) {
 // residuals over sigma) and within 3 reported sigmas (and 1 %) of the
 // truth.
 TEST(ThreadEnergy, LargeTableStartsFromItsSampleAndIsFittedOnEveryRow) {
-  ClothParams satin;
-  ASSERT_TRUE(GetPreset("polyester_satin_charmeuse", &satin));
-  ThreadParams truth = satin.threads[0].params;
-  truth.energy_bound = EnergyBoundOf(truth);
+  const ThreadParams truth = BoundedSatinThread();
   const int rows = 30000;
   ASSERT_GT(static_cast<size_t>(rows), kSampleRows);
   const MeasurementTable table =
