@@ -16,6 +16,7 @@ takes longer than --timeout seconds is stopped and recorded as such.
 Usage:
   python3 scripts/scale_rows.py [--max-rows 1000000] [--timeout 600]
       [--build build] [--out DIR] [--jobs thread,lafortune,eval,cloth]
+      [--rows 5000000,10000000]
 Results: docs/reliability.md ("Scale").
 """
 import argparse
@@ -128,6 +129,9 @@ def main():
     parser.add_argument("--out", default=os.path.join(
         ROOT, "data_synthetic", "out", "scale_rows"))
     parser.add_argument("--jobs", default="thread,lafortune,eval,cloth")
+    parser.add_argument("--rows", default="",
+                        help="comma-separated row counts, in place of "
+                        "the powers of ten up to --max-rows")
     args = parser.parse_args()
     clothfit = os.path.join(args.build, "apps", "clothfit")
     jobs = args.jobs.split(",")
@@ -140,6 +144,8 @@ def main():
     while n <= args.max_rows:
         rows_list.append(n)
         n *= 10
+    if args.rows:
+        rows_list = [int(r) for r in args.rows.split(",")]
     results = []
     for n in rows_list:
         full = os.path.join(args.out, "t%d_sigma.csv" % n)
