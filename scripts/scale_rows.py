@@ -145,7 +145,13 @@ def main():
         rows_list.append(n)
         n *= 10
     if args.rows:
-        rows_list = [int(r) for r in args.rows.split(",")]
+        try:
+            rows_list = [int(r) for r in args.rows.split(",")]
+        except ValueError:
+            parser.error("--rows: comma-separated row counts, got %r"
+                         % args.rows)
+        if min(rows_list) < 1:
+            parser.error("--rows: row counts must be >= 1")
     results = []
     for n in rows_list:
         full = os.path.join(args.out, "t%d_sigma.csv" % n)
