@@ -16,9 +16,10 @@ Runs, one after the other, so that the figures share the machine's state:
             10^7 rows the thread, Lafortune and cloth fits and eval
   holes     scripts/holes_scale.sh at 4096^2
 and prints each tool's table, then one table of the figures against their
-targets. The `before` column is the issue's measurement on this machine,
-or where it says so, the same run's clothfit-full (which links the image
-libraries, as every command did before). Takes 30-40 minutes and about
+targets. The `before` column is version 0.3's figure on this machine
+(measured before the work on these targets), or where it says so, the
+same run's clothfit-full (which links the image libraries, as every
+command did in 0.3). Takes 30-40 minutes and about
 5 GB of disk at its peak (the 10^7-row tables).
 Usage:
   python3 scripts/targets.py [--parts startup,material,paper,scale,holes]
