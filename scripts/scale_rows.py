@@ -32,12 +32,19 @@ THREAD = ('{"model": "thread", "eta": 1.55, "kd": 0.3, "gamma_s_deg": 8, '
           '"gamma_v_deg": 20, "albedo": [0.4, 0.3, 0.2]}\n')
 
 
-def run(command, timeout):
+def run(command, timeout, output=None):
     """(wall s, peak MiB, status) of one process; status 'timeout' if it
-    ran past `timeout` and was killed."""
+    ran past `timeout` and was killed. Its standard output and error go
+    to the file `output` (a path), or nowhere."""
     start = time.monotonic()
-    proc = subprocess.Popen(command, stdout=subprocess.DEVNULL,
-                            stderr=subprocess.DEVNULL)
+    sink = open(output, "w") if output else subprocess.DEVNULL
+    try:
+        proc = subprocess.Popen(command, stdout=sink,
+                                stderr=subprocess.STDOUT if output
+                                else subprocess.DEVNULL)
+    finally:
+        if output:
+            sink.close()
     status = None
     while True:
         pid, code, usage = os.wait4(proc.pid, os.WNOHANG)

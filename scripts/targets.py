@@ -33,9 +33,10 @@ import re
 import statistics
 import subprocess
 import sys
-import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import scale_rows  # noqa: E402  (run: a process's wall time and peak)
 
 PARTS = ["startup", "material", "paper", "scale", "holes"]
 
@@ -125,16 +126,10 @@ def paper(args, out, summary):
     walls, peaks = {1: [], 2: []}, []
     for threads in (2, 1, 2):
         log = os.path.join(os.path.dirname(stack), "fit_%d.log" % threads)
-        start = time.monotonic()
-        with open(log, "w") as f:
-            done = subprocess.Popen(
-                [clothfit, "fit", "--model", "lafortune", "--lobes", "2",
-                 "--mip", "--stack", stack, "--threads", str(threads),
-                 "--out", os.path.join(os.path.dirname(stack), "P.exr")],
-                stdout=f, stderr=subprocess.STDOUT)
-            _, code, usage = os.wait4(done.pid, 0)
-        done.returncode = code  # reaped by wait4
-        wall = time.monotonic() - start
+        wall, peak, status = scale_rows.run(
+            [clothfit, "fit", "--model", "lafortune", "--lobes", "2", "--mip",
+             "--stack", stack, "--threads", str(threads), "--out",
+             os.path.join(os.path.dirname(stack), "P.exr")], 3600, log)
         with open(log) as f:
             text = f.read()
         # The fit's summary: "level 0: 32x32, ..., mean relative rms R".
@@ -142,10 +137,9 @@ def paper(args, out, summary):
                           text)
         rms = match.group(1) if match else "?"
         walls[threads].append(wall)
-        peaks.append(usage.ru_maxrss / 1024.0)
-        lines.append("| %d | %.1f | %.0f | %s | exit %d |" % (
-            threads, wall, usage.ru_maxrss / 1024.0, rms,
-            os.waitstatus_to_exitcode(code)))
+        peaks.append(peak)
+        lines.append("| %d | %.1f | %.0f | %s | %s |" % (
+            threads, wall, peak, rms, status))
     out.append("### The paper's workload (%d x %d texels, 64 x 64 "
                "directions, K = 2, --mip)\n\n" % (
                    args.paper_texels, args.paper_texels) +
